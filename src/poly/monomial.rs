@@ -1,0 +1,270 @@
+//! Exact polynomials in `u`, `v` in the monomial basis, and their exact
+//! conversion to Bernstein–Bézier form on the unit triangle and unit square.
+//!
+//! # Conversions
+//! ```text
+//! triangle, degree n:  u^a v^b = Σ_{i≥a, j≥b} C(i,a) C(j,b) / C(n; a, b, n−a−b) · B^n_ijk
+//! interval, degree m:  t^a     = Σ_{i≥a} C(i,a) / C(m,a) · B^m_i(t)
+//! ```
+//! (the first from `u^a v^b = u^a v^b (u + v + w)^{n−a−b}`).
+
+use super::l2::{binomial, multinomial};
+use super::tensor::TensorBezier;
+use super::triangle::{tri_index, tri_indices, tri_len, TriBezier};
+use crate::error::{Error, Result};
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{One, Signed, Zero};
+use std::collections::BTreeMap;
+use std::fmt;
+
+/// Highest total degree a [`Polynomial`] may reach; larger products are
+/// rejected with [`Error::TooLarge`] instead of running away.
+pub const MAX_DEGREE: u32 = 200;
+
+/// An exact polynomial `Σ c_ab u^a v^b` with rational coefficients. Zero
+/// coefficients are never stored, so equality is equality of polynomials.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Polynomial {
+    terms: BTreeMap<(u32, u32), BigRational>,
+}
+
+impl Polynomial {
+    /// The zero polynomial.
+    pub fn zero() -> Self {
+        Self::default()
+    }
+
+    /// A constant.
+    pub fn constant(c: BigRational) -> Self {
+        Self::monomial(c, 0, 0)
+    }
+
+    /// `c u^a v^b`.
+    pub fn monomial(c: BigRational, a: u32, b: u32) -> Self {
+        let mut terms = BTreeMap::new();
+        if !c.is_zero() {
+            terms.insert((a, b), c);
+        }
+        Self { terms }
+    }
+
+    /// The variable `u`.
+    pub fn u() -> Self {
+        Self::monomial(BigRational::one(), 1, 0)
+    }
+
+    /// The variable `v`.
+    pub fn v() -> Self {
+        Self::monomial(BigRational::one(), 0, 1)
+    }
+
+    /// The non-zero terms, keyed by `(exponent of u, exponent of v)`.
+    pub fn terms(&self) -> &BTreeMap<(u32, u32), BigRational> {
+        &self.terms
+    }
+
+    /// `true` for the zero polynomial.
+    pub fn is_zero(&self) -> bool {
+        self.terms.is_empty()
+    }
+
+    /// The constant value, if the polynomial is constant.
+    pub fn as_constant(&self) -> Option<BigRational> {
+        match self.terms.len() {
+            0 => Some(BigRational::zero()),
+            1 => self.terms.get(&(0, 0)).cloned(),
+            _ => None,
+        }
+    }
+
+    /// Total degree (0 for constants and for the zero polynomial).
+    pub fn total_degree(&self) -> u32 {
+        self.terms.keys().map(|&(a, b)| a + b).max().unwrap_or(0)
+    }
+
+    /// Degrees in `u` and in `v` separately.
+    pub fn degrees(&self) -> (u32, u32) {
+        let du = self.terms.keys().map(|k| k.0).max().unwrap_or(0);
+        let dv = self.terms.keys().map(|k| k.1).max().unwrap_or(0);
+        (du, dv)
+    }
+
+    fn add_term(&mut self, key: (u32, u32), c: BigRational) {
+        let entry = self.terms.entry(key).or_insert_with(BigRational::zero);
+        *entry += c;
+        if entry.is_zero() {
+            self.terms.remove(&key);
+        }
+    }
+
+    /// `self + other`.
+    pub fn add(&self, other: &Self) -> Self {
+        let mut out = self.clone();
+        for (k, c) in &other.terms {
+            out.add_term(*k, c.clone());
+        }
+        out
+    }
+
+    /// `−self`.
+    pub fn neg(&self) -> Self {
+        Self {
+            terms: self.terms.iter().map(|(k, c)| (*k, -c)).collect(),
+        }
+    }
+
+    /// `self − other`.
+    pub fn sub(&self, other: &Self) -> Self {
+        self.add(&other.neg())
+    }
+
+    /// `c · self`.
+    pub fn scale(&self, c: &BigRational) -> Self {
+        if c.is_zero() {
+            return Self::zero();
+        }
+        Self {
+            terms: self.terms.iter().map(|(k, x)| (*k, x * c)).collect(),
+        }
+    }
+
+    /// `self · other`; errors if the total degree would exceed [`MAX_DEGREE`].
+    pub fn mul(&self, other: &Self) -> Result<Self> {
+        let deg = self.total_degree() + other.total_degree();
+        if deg > MAX_DEGREE && !self.is_zero() && !other.is_zero() {
+            return Err(Error::TooLarge(format!(
+                "total degree {deg} exceeds the limit {MAX_DEGREE}"
+            )));
+        }
+        let mut out = Self::zero();
+        for ((a1, b1), c1) in &self.terms {
+            for ((a2, b2), c2) in &other.terms {
+                out.add_term((a1 + a2, b1 + b2), c1 * c2);
+            }
+        }
+        Ok(out)
+    }
+
+    /// `self^e` by repeated squaring; errors past [`MAX_DEGREE`].
+    pub fn pow(&self, e: u32) -> Result<Self> {
+        let deg = u64::from(self.total_degree()) * u64::from(e);
+        if deg > u64::from(MAX_DEGREE) {
+            return Err(Error::TooLarge(format!(
+                "total degree {deg} exceeds the limit {MAX_DEGREE}"
+            )));
+        }
+        let mut result = Self::constant(BigRational::one());
+        let mut base = self.clone();
+        let mut e = e;
+        while e > 0 {
+            if e & 1 == 1 {
+                result = result.mul(&base)?;
+            }
+            e >>= 1;
+            if e > 0 {
+                base = base.mul(&base)?;
+            }
+        }
+        Ok(result)
+    }
+
+    /// Exact value at `(u, v)`.
+    pub fn eval(&self, u: &BigRational, v: &BigRational) -> BigRational {
+        self.terms.iter().fold(BigRational::zero(), |acc, ((a, b), c)| {
+            acc + c * num_traits::pow(u.clone(), *a as usize) * num_traits::pow(v.clone(), *b as usize)
+        })
+    }
+
+    /// Exact BB form on the unit triangle of degree `max(total degree, min_degree)`.
+    pub fn to_triangle(&self, min_degree: usize) -> TriBezier<BigRational> {
+        let n = (self.total_degree() as usize).max(min_degree);
+        let mut coeffs = vec![BigRational::zero(); tri_len(n)];
+        for ((a, b), c) in &self.terms {
+            let (a, b) = (*a as usize, *b as usize);
+            let den = multinomial(a, b, n - a - b);
+            for j in b..=n - a {
+                for i in a..=n - j {
+                    let num = binomial(i, a) * binomial(j, b);
+                    coeffs[tri_index(n, i, j)] += c * BigRational::new(num, den.clone());
+                }
+            }
+        }
+        TriBezier::new(n, coeffs).expect("exact coefficients are finite")
+    }
+
+    /// Exact BB form on the unit square of bidegree (degree in `u`, degree in `v`).
+    pub fn to_square(&self) -> TensorBezier<BigRational> {
+        let (m, n) = self.degrees();
+        let (m, n) = (m as usize, n as usize);
+        let mut coeffs = vec![BigRational::zero(); (m + 1) * (n + 1)];
+        for ((a, b), c) in &self.terms {
+            let (a, b) = (*a as usize, *b as usize);
+            let den = binomial(m, a) * binomial(n, b);
+            for i in a..=m {
+                for j in b..=n {
+                    let num = binomial(i, a) * binomial(j, b);
+                    coeffs[i * (n + 1) + j] += c * BigRational::new(num, den.clone());
+                }
+            }
+        }
+        TensorBezier::on_unit_square(m, n, coeffs).expect("exact coefficients are finite")
+    }
+
+    /// The monomial form of a BB polynomial on the unit triangle (the inverse
+    /// of [`Self::to_triangle`]).
+    pub fn from_triangle(f: &TriBezier<BigRational>) -> Self {
+        let n = f.degree();
+        let w = Self::constant(BigRational::one()).sub(&Self::u()).sub(&Self::v());
+        let mut out = Self::zero();
+        for ((i, j, k), c) in tri_indices(n).zip(f.coeffs()) {
+            let basis = Self::monomial(BigRational::from_integer(multinomial(i, j, k)), i as u32, j as u32);
+            let term = basis.mul(&w.pow(k as u32).expect("bounded")).expect("bounded");
+            out = out.add(&term.scale(c));
+        }
+        out
+    }
+}
+
+fn fmt_rational(q: &BigRational) -> String {
+    if q.denom() == &BigInt::one() {
+        q.numer().to_string()
+    } else {
+        format!("{}/{}", q.numer(), q.denom())
+    }
+}
+
+/// Prints a form the parser reads back to the same polynomial, highest total
+/// degree first: `3/4*u^2*v - u + 1/2`. The zero polynomial prints as `0`.
+impl fmt::Display for Polynomial {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.terms.is_empty() {
+            return write!(f, "0");
+        }
+        let mut keys: Vec<_> = self.terms.keys().copied().collect();
+        keys.sort_by(|x, y| (y.0 + y.1, y.0).cmp(&(x.0 + x.1, x.0)));
+        for (pos, key) in keys.iter().enumerate() {
+            let c = &self.terms[key];
+            let sign = if c.is_negative() { "-" } else { "+" };
+            match (pos, sign) {
+                (0, "-") => write!(f, "-")?,
+                (0, _) => {}
+                _ => write!(f, " {sign} ")?,
+            }
+            let mag = c.abs();
+            let mut factors = Vec::new();
+            if !mag.is_one() || *key == (0, 0) {
+                factors.push(fmt_rational(&mag));
+            }
+            for (var, e) in [("u", key.0), ("v", key.1)] {
+                match e {
+                    0 => {}
+                    1 => factors.push(var.to_string()),
+                    _ => factors.push(format!("{var}^{e}")),
+                }
+            }
+            write!(f, "{}", factors.join("*"))?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,344 @@
+//! Tensor-product polynomials of bidegree `(m, n)` in Bernstein–Bézier form on
+//! a rectangle `[a, b] × [c, d]`.
+//!
+//! ```text
+//! f(u, v) = Σ_{i=0}^{m} Σ_{j=0}^{n} f_ij B^m_i(s) B^n_j(t),   s = (u − a)/(b − a),   t = (v − c)/(d − c)
+//! ```
+//! Coefficients are stored row-major: `f_ij` at index `i·(n+1) + j`.
+
+use super::l2::{self, binomial, multinomial};
+use super::triangle::{mat_vec, max_abs_diff, tri_index, tri_len, TriBezier};
+use super::univariate::{split_coeffs, UniBezier};
+use crate::error::{Error, Result};
+use crate::scalar::{MatrixKey, Scalar, Sign};
+use num_rational::BigRational;
+use num_traits::Zero;
+
+/// A tensor-product Bernstein–Bézier polynomial of bidegree `(m, n)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TensorBezier<S> {
+    m: usize,
+    n: usize,
+    coeffs: Vec<S>,
+    u_domain: [S; 2],
+    v_domain: [S; 2],
+}
+
+/// The result of [`TensorBezier::reduce_l2`]; see
+/// [`TriReduction`](super::TriReduction) for the meaning of the fields.
+#[derive(Clone, Debug)]
+pub struct TensorReduction<S> {
+    /// The approximant of bidegree `(k, l)` on the same rectangle.
+    pub approx: TensorBezier<S>,
+    /// `max_ij |f_ij − ā_ij|`, a bound on `|f − approx|` over the rectangle.
+    pub delta: S,
+}
+
+/// Which parameter a split or derivative acts on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Direction {
+    /// The first parameter, `u` (index `i`).
+    U,
+    /// The second parameter, `v` (index `j`).
+    V,
+}
+
+impl<S: Scalar> TensorBezier<S> {
+    /// A polynomial from `(m+1)(n+1)` row-major coefficients on a rectangle.
+    /// Errors on a wrong count, a non-finite value or an empty side.
+    pub fn new(m: usize, n: usize, coeffs: Vec<S>, u_domain: [S; 2], v_domain: [S; 2]) -> Result<Self> {
+        if coeffs.len() != (m + 1) * (n + 1) {
+            return Err(Error::Shape(format!(
+                "bidegree ({m}, {n}) needs {} coefficients, got {}",
+                (m + 1) * (n + 1),
+                coeffs.len()
+            )));
+        }
+        let sides = [&u_domain, &v_domain];
+        for d in sides {
+            UniBezier::new(vec![S::zero()], d.clone())?;
+        }
+        if let Some(pos) = coeffs.iter().position(|c| !c.is_finite()) {
+            return Err(Error::NonFinite(format!("coefficient {pos} is {:?}", coeffs[pos])));
+        }
+        Ok(Self {
+            m,
+            n,
+            coeffs,
+            u_domain,
+            v_domain,
+        })
+    }
+
+    /// A polynomial on the unit square.
+    pub fn on_unit_square(m: usize, n: usize, coeffs: Vec<S>) -> Result<Self> {
+        Self::new(m, n, coeffs, [S::zero(), S::one()], [S::zero(), S::one()])
+    }
+
+    /// The bidegree `(m, n)`.
+    pub fn degree(&self) -> (usize, usize) {
+        (self.m, self.n)
+    }
+
+    /// The coefficients, row-major.
+    pub fn coeffs(&self) -> &[S] {
+        &self.coeffs
+    }
+
+    /// Coefficient `f_ij`. Panics if out of range (a caller bug).
+    pub fn coeff(&self, i: usize, j: usize) -> &S {
+        assert!(
+            i <= self.m && j <= self.n,
+            "index ({i}, {j}) outside bidegree ({}, {})",
+            self.m,
+            self.n
+        );
+        &self.coeffs[i * (self.n + 1) + j]
+    }
+
+    /// The rectangle `([a, b], [c, d])`.
+    pub fn domain(&self) -> (&[S; 2], &[S; 2]) {
+        (&self.u_domain, &self.v_domain)
+    }
+
+    /// The same polynomial in another kernel.
+    pub fn map<T: Scalar>(&self, f: impl Fn(&S) -> T) -> TensorBezier<T> {
+        TensorBezier {
+            m: self.m,
+            n: self.n,
+            coeffs: self.coeffs.iter().map(&f).collect(),
+            u_domain: [f(&self.u_domain[0]), f(&self.u_domain[1])],
+            v_domain: [f(&self.v_domain[0]), f(&self.v_domain[1])],
+        }
+    }
+
+    fn row(&self, i: usize) -> UniBezier<S> {
+        let start = i * (self.n + 1);
+        UniBezier::new(self.coeffs[start..start + self.n + 1].to_vec(), self.v_domain.clone())
+            .expect("rows of a valid tensor are valid")
+    }
+
+    /// Value at `(u, v)` by de Casteljau in `v` along each row, then in `u`.
+    ///
+    /// ```
+    /// use rootclip::TensorBezier;
+    /// // f = u·v on the unit square: coefficients (i/1)(j/1).
+    /// let f = TensorBezier::on_unit_square(1, 1, vec![0.0, 0.0, 0.0, 1.0]).unwrap();
+    /// assert!((f.eval(0.5, 0.25) - 0.125).abs() < 1e-15);
+    /// ```
+    pub fn eval(&self, u: S, v: S) -> S {
+        let column: Vec<S> = (0..=self.m).map(|i| self.row(i).eval(v.clone())).collect();
+        UniBezier::new(column, self.u_domain.clone()).expect("valid").eval(u)
+    }
+
+    /// The two pieces either side of `at` (a domain coordinate in `direction`).
+    /// Errors unless `at` is provably inside the open side.
+    pub fn subdivide(&self, direction: Direction, at: S) -> Result<(Self, Self)> {
+        let side = match direction {
+            Direction::U => &self.u_domain,
+            Direction::V => &self.v_domain,
+        };
+        let probe = UniBezier::new(vec![S::zero()], side.clone())?;
+        probe.subdivide(at.clone())?; // validates a < at < b
+        let t = probe.local(at.clone());
+        let (mut lo, mut hi) = (self.clone(), self.clone());
+        let lines = self.lines(direction);
+        for (idx, line) in lines.iter().enumerate() {
+            let (l, r) = split_coeffs(line, t.clone());
+            lo.set_line(direction, idx, l);
+            hi.set_line(direction, idx, r);
+        }
+        match direction {
+            Direction::U => {
+                lo.u_domain[1] = at.clone();
+                hi.u_domain[0] = at;
+            }
+            Direction::V => {
+                lo.v_domain[1] = at.clone();
+                hi.v_domain[0] = at;
+            }
+        }
+        Ok((lo, hi))
+    }
+
+    /// The coefficient lines along `direction`: for `U`, the `n + 1` columns
+    /// (fixed `j`, `i = 0..=m`); for `V`, the `m + 1` rows.
+    fn lines(&self, direction: Direction) -> Vec<Vec<S>> {
+        match direction {
+            Direction::U => (0..=self.n)
+                .map(|j| (0..=self.m).map(|i| self.coeff(i, j).clone()).collect())
+                .collect(),
+            Direction::V => (0..=self.m)
+                .map(|i| (0..=self.n).map(|j| self.coeff(i, j).clone()).collect())
+                .collect(),
+        }
+    }
+
+    fn set_line(&mut self, direction: Direction, idx: usize, line: Vec<S>) {
+        let n1 = self.n + 1;
+        for (t, c) in line.into_iter().enumerate() {
+            let pos = match direction {
+                Direction::U => t * n1 + idx,
+                Direction::V => idx * n1 + t,
+            };
+            self.coeffs[pos] = c;
+        }
+    }
+
+    /// Applies a linear map (row-major, `rows × len`) to every line along
+    /// `direction`, giving a polynomial of degree `rows − 1` in that direction.
+    fn map_lines(&self, direction: Direction, mat: &[S], rows: usize) -> Self {
+        let lines: Vec<Vec<S>> = self.lines(direction).iter().map(|l| mat_vec(mat, l, rows)).collect();
+        let (m, n) = match direction {
+            Direction::U => (rows - 1, self.n),
+            Direction::V => (self.m, rows - 1),
+        };
+        let mut out = Self {
+            m,
+            n,
+            coeffs: vec![S::zero(); (m + 1) * (n + 1)],
+            ..self.clone()
+        };
+        for (idx, line) in lines.into_iter().enumerate() {
+            out.set_line(direction, idx, line);
+        }
+        out
+    }
+
+    /// Degree elevation to `(m2, n2) ≥ (m, n)`.
+    pub fn elevate(&self, m2: usize, n2: usize) -> Result<Self> {
+        if m2 < self.m || n2 < self.n {
+            return Err(Error::Shape(format!(
+                "cannot elevate ({}, {}) to ({m2}, {n2})",
+                self.m, self.n
+            )));
+        }
+        let (m, n) = (self.m, self.n);
+        let eu = S::cached_matrix(MatrixKey::UniElevate(m, m2), || l2::uni_elevation_exact(m, m2));
+        let ev = S::cached_matrix(MatrixKey::UniElevate(n, n2), || l2::uni_elevation_exact(n, n2));
+        Ok(self
+            .map_lines(Direction::U, &eu, m2 + 1)
+            .map_lines(Direction::V, &ev, n2 + 1))
+    }
+
+    /// The partial derivative in `direction`, in domain coordinates: bidegree
+    /// drops by one in that direction (the zero polynomial if it was 0).
+    pub fn deriv(&self, direction: Direction) -> Self {
+        let lines = self.lines(direction);
+        let side = match direction {
+            Direction::U => &self.u_domain,
+            Direction::V => &self.v_domain,
+        };
+        let derived: Vec<Vec<S>> = lines
+            .into_iter()
+            .map(|l| {
+                UniBezier::new(l, side.clone())
+                    .expect("valid")
+                    .deriv()
+                    .coeffs()
+                    .to_vec()
+            })
+            .collect();
+        let len = derived[0].len();
+        let (m, n) = match direction {
+            Direction::U => (len - 1, self.n),
+            Direction::V => (self.m, len - 1),
+        };
+        let mut out = Self {
+            m,
+            n,
+            coeffs: vec![S::zero(); (m + 1) * (n + 1)],
+            ..self.clone()
+        };
+        for (idx, line) in derived.into_iter().enumerate() {
+            out.set_line(direction, idx, line);
+        }
+        out
+    }
+
+    /// The L2-best approximation of bidegree `(k, l)` over the rectangle
+    /// (`k < m` or `l < n`; a direction with equal degree is kept) and the
+    /// bound `δ`. The L2 projection onto a tensor space is the tensor product of
+    /// the univariate projections, so rows and columns are reduced in turn.
+    pub fn reduce_l2(&self, k: usize, l: usize) -> Result<TensorReduction<S>> {
+        let (m, n) = (self.m, self.n);
+        if k > m || l > n || (k == m && l == n) {
+            return Err(Error::Shape(format!(
+                "L2 reduction of ({m}, {n}) to ({k}, {l}) is not a reduction"
+            )));
+        }
+        let ru = S::cached_matrix(MatrixKey::UniReduce(m, k), || reduction_or_identity(m, k));
+        let rv = S::cached_matrix(MatrixKey::UniReduce(n, l), || reduction_or_identity(n, l));
+        let mut approx = self
+            .map_lines(Direction::U, &ru, k + 1)
+            .map_lines(Direction::V, &rv, l + 1);
+        approx.coeffs = approx.coeffs.iter().map(S::to_point).collect();
+        let delta = max_abs_diff(&self.coeffs, approx.elevate(m, n)?.coeffs());
+        Ok(TensorReduction { approx, delta })
+    }
+
+    /// Exact conversion into two triangular polynomials of degree `m + n`
+    /// covering the rectangle: in local coordinates `(s, t) ∈ [0, 1]²`,
+    /// * the first is `{s, t ≥ 0, s + t ≤ 1}` with barycentric `(s, t, 1 − s − t)`;
+    /// * the second is `{s + t ≥ 1}` with barycentric `(1 − s, 1 − t, s + t − 1)`
+    ///   (the point reflection through the centre, so `V1 = (0, 1)`,
+    ///   `V2 = (1, 0)`, `V3 = (1, 1)`).
+    ///
+    /// Formula: `B^m_i(s) B^n_j(t)` with `1 − s = t + w`, `1 − t = s + w`
+    /// expands to `Σ_{a,b} C(m,i)C(n,j)C(m−i,a)C(n−j,b)/C(m+n; i+b, j+a, ·) B^{m+n}_{i+b, j+a}`.
+    /// Exact in rationals; an enclosure with intervals.
+    pub fn to_triangles(&self) -> [TriBezier<S>; 2] {
+        let (m, n) = (self.m, self.n);
+        let mat = S::cached_matrix(MatrixKey::TensorToTri(m, n), || tensor_to_tri_exact(m, n));
+        let reflected: Vec<S> = self.coeffs.iter().rev().cloned().collect();
+        let first = mat_vec(&mat, &self.coeffs, tri_len(m + n));
+        let second = mat_vec(&mat, &reflected, tri_len(m + n));
+        [
+            TriBezier::new(m + n, first).expect("conversion keeps finiteness"),
+            TriBezier::new(m + n, second).expect("conversion keeps finiteness"),
+        ]
+    }
+
+    /// `true` if the (local) point `(s, t)` lies where [`Self::to_triangles`]
+    /// puts it in the first triangle (`s + t ≤ 1`).
+    pub fn in_first_triangle(s: f64, t: f64) -> bool {
+        s + t <= 1.0
+    }
+
+    /// Sign summary of the coefficients: `Some(sign)` when every coefficient has
+    /// that strict sign (then `f` has it on the whole rectangle).
+    pub fn uniform_sign(&self) -> Option<Sign> {
+        let first = self.coeffs[0].sign();
+        let strict = matches!(first, Sign::Positive | Sign::Negative);
+        (strict && self.coeffs.iter().all(|c| c.sign() == first)).then_some(first)
+    }
+}
+
+fn reduction_or_identity(n: usize, k: usize) -> Vec<BigRational> {
+    if k == n {
+        l2::uni_elevation_exact(n, n)
+    } else {
+        l2::uni_reduction_exact(n, k)
+    }
+}
+
+/// The exact matrix of [`TensorBezier::to_triangles`], `tri_len(m+n) × (m+1)(n+1)`.
+pub fn tensor_to_tri_exact(m: usize, n: usize) -> Vec<BigRational> {
+    let big = m + n;
+    let cols = (m + 1) * (n + 1);
+    let mut out = vec![<BigRational as Zero>::zero(); tri_len(big) * cols];
+    for i in 0..=m {
+        for j in 0..=n {
+            let base = binomial(m, i) * binomial(n, j);
+            for a in 0..=m - i {
+                for b in 0..=n - j {
+                    let (p, q) = (i + b, j + a);
+                    let num = &base * binomial(m - i, a) * binomial(n - j, b);
+                    let den = multinomial(p, q, big - p - q);
+                    out[tri_index(big, p, q) * cols + i * (n + 1) + j] += BigRational::new(num, den);
+                }
+            }
+        }
+    }
+    out
+}
