@@ -74,6 +74,8 @@ pub enum MatrixKey {
     TriElevate(usize, usize),
     /// Tensor bidegree `(m, n)` on the unit square to a triangle of degree `m + n`.
     TensorToTri(usize, usize),
+    /// Weights of the triangular BB product of degrees `m` and `n`.
+    TriProduct(usize, usize),
 }
 
 type Cache<S> = Mutex<HashMap<MatrixKey, Arc<[S]>>>;
@@ -85,7 +87,7 @@ type Cache<S> = Mutex<HashMap<MatrixKey, Arc<[S]>>>;
 ///
 /// Contract for the rigorous kernels ([`Kernel::is_rigorous`]): every
 /// operation returns an enclosure of the exact result for all members of its
-/// inputs; [`Scalar::sign`] and [`Scalar::mag`] answer for every member.
+/// inputs; [`Scalar::sign_class`] and [`Scalar::mag`] answer for every member.
 pub trait Scalar:
     Clone
     + Debug
@@ -116,7 +118,7 @@ pub trait Scalar:
     /// nearest float to the rational.
     fn to_f64(&self) -> f64;
     /// The sign; see [`Sign`].
-    fn sign(&self) -> Sign;
+    fn sign_class(&self) -> Sign;
     /// An upper bound on `|x|` over the enclosure, rounded up (rigorous
     /// kernels) or to nearest (`f64`).
     fn mag(&self) -> f64;
@@ -183,7 +185,7 @@ impl Scalar for f64 {
     fn to_f64(&self) -> f64 {
         *self
     }
-    fn sign(&self) -> Sign {
+    fn sign_class(&self) -> Sign {
         if *self > 0.0 {
             Sign::Positive
         } else if *self < 0.0 {
@@ -238,7 +240,7 @@ impl Scalar for Interval {
     fn to_f64(&self) -> f64 {
         self.mid()
     }
-    fn sign(&self) -> Sign {
+    fn sign_class(&self) -> Sign {
         if self.is_empty() {
             Sign::Straddles
         } else if self.inf() > 0.0 {
@@ -312,7 +314,7 @@ impl Scalar for BigRational {
     fn to_f64(&self) -> f64 {
         rational_to_f64(self)
     }
-    fn sign(&self) -> Sign {
+    fn sign_class(&self) -> Sign {
         if self.is_positive() {
             Sign::Positive
         } else if self.is_negative() {
@@ -449,7 +451,7 @@ mod tests {
     fn dyadic_is_a_point() {
         let x = rational_to_interval(&q(-3, 8));
         assert_eq!((x.inf(), x.sup()), (-0.375, -0.375));
-        assert_eq!(x.sign(), Sign::Negative);
+        assert_eq!(x.sign_class(), Sign::Negative);
     }
 
     #[test]
@@ -462,16 +464,16 @@ mod tests {
         let y = rational_to_interval(&tiny);
         assert!(y.inf() == 0.0 && y.sup() > 0.0);
         assert!(interval_contains_rational(y, &tiny));
-        assert_eq!(y.sign(), Sign::Straddles);
+        assert_eq!(y.sign_class(), Sign::Straddles);
     }
 
     #[test]
     fn signs() {
-        assert_eq!(interval(-1.0, 1.0).sign(), Sign::Straddles);
-        assert_eq!(interval(0.0, 0.0).sign(), Sign::Zero);
-        assert_eq!(Interval::EMPTY.sign(), Sign::Straddles);
+        assert_eq!(interval(-1.0, 1.0).sign_class(), Sign::Straddles);
+        assert_eq!(interval(0.0, 0.0).sign_class(), Sign::Zero);
+        assert_eq!(Interval::EMPTY.sign_class(), Sign::Straddles);
         assert_eq!(Interval::ENTIRE.mag(), f64::INFINITY);
-        assert_eq!(<f64 as Scalar>::sign(&f64::NAN), Sign::Straddles);
+        assert_eq!(<f64 as Scalar>::sign_class(&f64::NAN), Sign::Straddles);
         assert_eq!(<BigRational as Scalar>::from_f64(f64::NAN), None);
     }
 }

@@ -105,6 +105,19 @@ pub fn uni_elevation_exact(n: usize, m: usize) -> Vec<BigRational> {
     out
 }
 
+/// Weights `C(m;α) C(n;β) / C(m+n;α+β)` of the triangular BB product,
+/// `tri_len(m) × tri_len(n)` (the target index is `α + β`).
+pub fn tri_product_weights(m: usize, n: usize) -> Vec<BigRational> {
+    let mut out = Vec::with_capacity(tri_len(m) * tri_len(n));
+    for (a0, a1, a2) in tri_indices(m) {
+        for (b0, b1, b2) in tri_indices(n) {
+            let num = multinomial(a0, a1, a2) * multinomial(b0, b1, b2);
+            out.push(ratio(num, multinomial(a0 + b0, a1 + b1, a2 + b2)));
+        }
+    }
+    out
+}
+
 /// The triangular L2 projection from degree `n` to `k`: `G_kk⁻¹ G_kn`,
 /// `tri_len(k) × tri_len(n)`.
 pub fn tri_reduction_exact(n: usize, k: usize) -> Vec<BigRational> {

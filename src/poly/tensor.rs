@@ -308,9 +308,9 @@ impl<S: Scalar> TensorBezier<S> {
     /// Sign summary of the coefficients: `Some(sign)` when every coefficient has
     /// that strict sign (then `f` has it on the whole rectangle).
     pub fn uniform_sign(&self) -> Option<Sign> {
-        let first = self.coeffs[0].sign();
+        let first = self.coeffs[0].sign_class();
         let strict = matches!(first, Sign::Positive | Sign::Negative);
-        (strict && self.coeffs.iter().all(|c| c.sign() == first)).then_some(first)
+        (strict && self.coeffs.iter().all(|c| c.sign_class() == first)).then_some(first)
     }
 }
 

@@ -285,10 +285,46 @@ impl<S: Scalar> TriBezier<S> {
         }
     }
 
+    /// The product `f·g` of degree `m + n`:
+    /// `(fg)_γ = Σ_{α+β=γ} C(m;α) C(n;β) / C(m+n;γ) · f_α g_β`.
+    /// Exact in rationals; an enclosure with intervals.
+    pub fn mul(&self, other: &Self) -> Self {
+        let (m, n) = (self.degree, other.degree);
+        let w = S::cached_matrix(MatrixKey::TriProduct(m, n), || l2::tri_product_weights(m, n));
+        let mut out = vec![S::zero(); tri_len(m + n)];
+        let cols = tri_len(n);
+        for (a, (a0, a1, _)) in tri_indices(m).enumerate() {
+            for (b, (b0, b1, _)) in tri_indices(n).enumerate() {
+                let term = w[a * cols + b].clone() * self.coeffs[a].clone() * other.coeffs[b].clone();
+                let g = tri_index(m + n, a0 + b0, a1 + b1);
+                out[g] = out[g].clone() + term;
+            }
+        }
+        Self {
+            degree: m + n,
+            coeffs: out,
+        }
+    }
+
+    /// `f + g`, elevating the lower degree first.
+    pub fn add(&self, other: &Self) -> Self {
+        let d = self.degree.max(other.degree);
+        let (a, b) = (self.elevate_cached(d), other.elevate_cached(d));
+        Self {
+            degree: d,
+            coeffs: a.coeffs.into_iter().zip(b.coeffs).map(|(x, y)| x + y).collect(),
+        }
+    }
+
+    /// `f − g`, elevating the lower degree first.
+    pub fn sub(&self, other: &Self) -> Self {
+        self.add(&other.map(|c| -c.clone()))
+    }
+
     /// `true` when every coefficient is exactly zero (an identically zero
     /// polynomial). With intervals: every coefficient is the point `[0, 0]`.
     pub fn is_zero(&self) -> bool {
-        self.coeffs.iter().all(|c| c.sign() == crate::scalar::Sign::Zero)
+        self.coeffs.iter().all(|c| c.sign_class() == crate::scalar::Sign::Zero)
     }
 }
 

@@ -40,7 +40,7 @@ impl<S: Scalar> UniBezier<S> {
                 "coefficient or domain end {pos} is not finite"
             )));
         }
-        if (domain[1].clone() - domain[0].clone()).sign() != Sign::Positive {
+        if (domain[1].clone() - domain[0].clone()).sign_class() != Sign::Positive {
             return Err(Error::Degenerate(format!(
                 "interval [{:?}, {:?}] is empty or a point",
                 domain[0], domain[1]
@@ -103,8 +103,8 @@ impl<S: Scalar> UniBezier<S> {
     /// provably.
     pub fn subdivide(&self, x: S) -> Result<(Self, Self)> {
         let [a, b] = self.domain.clone();
-        let inside =
-            (x.clone() - a.clone()).sign() == Sign::Positive && (b.clone() - x.clone()).sign() == Sign::Positive;
+        let inside = (x.clone() - a.clone()).sign_class() == Sign::Positive
+            && (b.clone() - x.clone()).sign_class() == Sign::Positive;
         if !inside {
             return Err(Error::Degenerate(format!(
                 "split point {x:?} is not inside ({a:?}, {b:?})"
