@@ -19,7 +19,9 @@
 pub mod error;
 pub mod poly;
 pub mod scalar;
+pub mod solve;
 
 pub use error::{Error, Result};
 pub use poly::{parse_polynomial, Polynomial, TensorBezier, TriBezier, UniBezier};
 pub use scalar::{Kernel, Scalar, Sign};
+pub use solve::{solve, Domain, Method, Solution, SolveOptions};

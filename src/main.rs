@@ -4,6 +4,7 @@ use clap::{Parser, Subcommand, ValueEnum};
 use num_rational::BigRational;
 use num_traits::One;
 use rootclip::poly::tri_indices;
+use rootclip::solve::{self, Method, Solution, SolveOptions};
 use rootclip::{parse_polynomial, Error};
 use serde_json::{json, Value};
 use std::process::ExitCode;
@@ -27,8 +28,55 @@ enum Domain {
     Square,
 }
 
+#[derive(Clone, Copy, ValueEnum)]
+enum MethodArg {
+    /// Hybrid clipping with preprocessing (default).
+    Hc,
+    /// Hybrid clipping without preprocessing.
+    HcNopre,
+    /// Linear fat curves for both equations.
+    Linear,
+    /// Triangular Bézier clipping.
+    Bezier,
+}
+
+impl From<MethodArg> for Method {
+    fn from(m: MethodArg) -> Self {
+        match m {
+            MethodArg::Hc => Method::Hc,
+            MethodArg::HcNopre => Method::HcNoPre,
+            MethodArg::Linear => Method::Linear,
+            MethodArg::Bezier => Method::Bezier,
+        }
+    }
+}
+
 #[derive(Subcommand)]
 enum Command {
+    /// Every root of f = g = 0 in the domain, each in a certified box.
+    Solve {
+        /// The first equation, e.g. "u^3 - v".
+        #[arg(long = "f", allow_hyphen_values = true)]
+        f: String,
+        /// The second equation.
+        #[arg(long = "g", allow_hyphen_values = true)]
+        g: String,
+        /// The domain.
+        #[arg(long, value_enum, default_value = "triangle")]
+        domain: Domain,
+        /// The clipping method.
+        #[arg(long, value_enum, default_value = "hc")]
+        method: MethodArg,
+        /// Refine tri-boxes until their diameter is below this.
+        #[arg(long, default_value_t = 1e-12)]
+        eps: f64,
+        /// Budget: tri-boxes per triangle.
+        #[arg(long, default_value_t = 200_000)]
+        max_boxes: usize,
+        /// Print JSON instead of text.
+        #[arg(long)]
+        json: bool,
+    },
     /// Print the exact Bernstein–Bézier coefficients of a polynomial in u, v.
     Bernstein {
         /// The polynomial, e.g. "10*(u-1/2)*(u-1/4)*(u-1/8) + 1/4 - v".
@@ -79,6 +127,23 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> Result<String, Error> {
     match cli.command {
         Command::Bernstein { f, domain, json } => bernstein(&f, domain, json),
+        Command::Solve {
+            f,
+            g,
+            domain,
+            method,
+            eps,
+            max_boxes,
+            json,
+        } => {
+            let opts = SolveOptions {
+                method: method.into(),
+                eps,
+                max_boxes,
+                ..SolveOptions::default()
+            };
+            solve_cmd(&f, &g, domain, &opts, json)
+        }
     }
 }
 
@@ -130,4 +195,124 @@ fn bernstein(expr: &str, domain: Domain, json: bool) -> Result<String, Error> {
         out += &rows.into_iter().map(|r| r.1).collect::<Vec<_>>().join("\n");
         Ok(out)
     }
+}
+
+fn solve_cmd(f: &str, g: &str, domain: Domain, opts: &SolveOptions, json: bool) -> Result<String, Error> {
+    let f = parse_polynomial(f).map_err(|e| prefix("--f", e))?;
+    let g = parse_polynomial(g).map_err(|e| prefix("--g", e))?;
+    let d = match domain {
+        Domain::Triangle => solve::Domain::Triangle,
+        Domain::Square => solve::Domain::Square,
+    };
+    let t0 = std::time::Instant::now();
+    let sol = solve::solve(&f, &g, d, opts)?;
+    let secs = t0.elapsed().as_secs_f64();
+    Ok(if json {
+        solution_json(&sol, secs).to_string()
+    } else {
+        solution_text(&sol, secs)
+    })
+}
+
+fn prefix(what: &str, e: Error) -> Error {
+    match e {
+        Error::Parse { message, at } => Error::Parse {
+            message: format!("{what}: {message}"),
+            at,
+        },
+        other => other,
+    }
+}
+
+fn box_json(b: &solve::Box2) -> Value {
+    json!({"u": b.u, "v": b.v})
+}
+
+fn solution_json(sol: &Solution, secs: f64) -> Value {
+    let roots: Vec<Value> = sol
+        .roots
+        .iter()
+        .map(|r| json!({"u": r.u, "v": r.v, "box": box_json(&r.bx), "certified": r.certified, "on_boundary": r.on_boundary}))
+        .collect();
+    let clusters: Vec<Value> = sol
+        .clusters
+        .iter()
+        .map(|c| json!({"box": box_json(&c.bx), "reason": c.reason.describe()}))
+        .collect();
+    let leftovers: Vec<Value> = sol
+        .leftovers
+        .iter()
+        .map(|l| json!({"box": box_json(&l.bx), "triangle": l.triangle}))
+        .collect();
+    let s = &sol.stats;
+    json!({
+        "complete": sol.complete,
+        "roots": roots,
+        "clusters": clusters,
+        "leftovers": leftovers,
+        "stats": {
+            "tri_boxes": s.run.boxes, "clips": s.run.clips, "splits": s.run.splits,
+            "sign_exclusions": s.run.sign_exclusions, "clip_exclusions": s.run.clip_exclusions,
+            "krawczyk_calls": s.krawczyk_calls, "krawczyk_exclusions": s.krawczyk_exclusions,
+            "leaves": s.leaves, "outside_domain": s.outside_domain, "max_level": s.max_level,
+            "seconds": secs
+        }
+    })
+}
+
+fn solution_text(sol: &Solution, secs: f64) -> String {
+    let mut out = format!(
+        "{} root(s), {} undecided cluster(s){}\n",
+        sol.roots.len(),
+        sol.clusters.len(),
+        if sol.complete {
+            ", complete"
+        } else {
+            ", INCOMPLETE (budget reached; see leftovers)"
+        }
+    );
+    for r in &sol.roots {
+        out += &format!(
+            "root u = {:.17} v = {:.17}  box u [{:e}, {:e}] v [{:e}, {:e}]{}\n",
+            r.u,
+            r.v,
+            r.bx.u[0],
+            r.bx.u[1],
+            r.bx.v[0],
+            r.bx.v[1],
+            if r.on_boundary {
+                "  (on the domain boundary)"
+            } else {
+                ""
+            }
+        );
+    }
+    for c in &sol.clusters {
+        out += &format!(
+            "cluster box u [{:e}, {:e}] v [{:e}, {:e}]: {}\n",
+            c.bx.u[0],
+            c.bx.u[1],
+            c.bx.v[0],
+            c.bx.v[1],
+            c.reason.describe()
+        );
+    }
+    for l in &sol.leftovers {
+        out += &format!(
+            "leftover box u [{:e}, {:e}] v [{:e}, {:e}]\n",
+            l.bx.u[0], l.bx.u[1], l.bx.v[0], l.bx.v[1]
+        );
+    }
+    let s = &sol.stats;
+    out += &format!(
+        "{} tri-boxes, {} clips, {} splits, {} sign exclusions, {} clip exclusions, {} Krawczyk calls, {:.1} µs",
+        s.run.boxes,
+        s.run.clips,
+        s.run.splits,
+        s.run.sign_exclusions,
+        s.run.clip_exclusions,
+        s.krawczyk_calls,
+        secs * 1e6
+    );
+    out
 }

@@ -1,0 +1,279 @@
+//! Algorithm 1 of Liu et al. (2016) as a work-list loop over tri-boxes, generic
+//! over the kernel: `Interval` for the certified solver, `f64` for the same
+//! iteration without proofs (to measure the cost of rigor).
+//!
+//! One *step* (one call of Algorithm 1) clips a tri-box and, when the clip did
+//! not halve its diameter, splits the clipped tri-box 1-to-4. The tri-boxes it
+//! produces are one level deeper. Check-sign (§2.3.4) discards a tri-box when
+//! every coefficient of `f` or of `g` on it has one strict sign.
+
+use super::fatcurve::ClipBounds;
+use super::method::{clip_bounds, Method};
+use super::num::Num;
+use super::tribox::TriBox;
+use crate::poly::TriBezier;
+use crate::scalar::Sign;
+
+/// Budgets and tolerances of one run.
+#[derive(Clone, Copy, Debug)]
+pub struct Limits {
+    /// The clipping method.
+    pub method: Method,
+    /// Stop refining a tri-box once its diameter is below this.
+    pub eps: f64,
+    /// At most this many tri-boxes are processed.
+    pub max_boxes: usize,
+    /// No tri-box deeper than this level is processed.
+    pub max_depth: usize,
+    /// Probe stalled tri-boxes (clip did not halve) smaller than this with
+    /// the `probe` callback of [`run`]; `0` disables probing (the paper's
+    /// algorithm, used for the tables).
+    pub probe_below: f64,
+}
+
+/// What a probe (Krawczyk on a stalled tri-box) proved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Probe {
+    /// Exactly one root in (a box containing) the tri-box: stop refining it.
+    Unique,
+    /// No root in the tri-box: discard it.
+    NoRoot,
+    /// Nothing proven.
+    Undecided,
+}
+
+/// Below this diameter a stalled, undecided tri-box is not split further:
+/// it sits at the precision floor of a multiple or near-multiple root, where
+/// tangency amplifies the ~1e-16 rounding of the coefficients into a lens
+/// ~1e-8 long that no subdivision can resolve.
+pub const SINGULAR_FLOOR: f64 = 1e-9;
+
+/// One node of the recursion tree: the tri-box at some level.
+#[derive(Clone, Copy, Debug)]
+pub struct Node {
+    /// The node of the step that produced this one (`None` for the root).
+    pub parent: Option<usize>,
+    /// Steps from the root tri-box.
+    pub level: usize,
+    /// Longest edge.
+    pub diam: f64,
+}
+
+/// A tri-box the loop stopped at, with its polynomials and tree node.
+#[derive(Clone, Debug)]
+pub struct Leaf<S> {
+    /// The tri-box (root-local coordinates).
+    pub tb: TriBox,
+    /// Its node in the trace.
+    pub node: usize,
+    /// `f` on the tri-box.
+    pub fa: TriBezier<S>,
+    /// `g` on the tri-box.
+    pub fb: TriBezier<S>,
+}
+
+/// Counters of one run.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Counters {
+    /// Tri-boxes processed (clipped).
+    pub boxes: usize,
+    /// Clips that shrank a tri-box.
+    pub clips: usize,
+    /// 1-to-4 splits.
+    pub splits: usize,
+    /// Tri-boxes discarded by check-sign.
+    pub sign_exclusions: usize,
+    /// Tri-boxes discarded because the fat regions (or hulls) do not meet.
+    pub clip_exclusions: usize,
+    /// Krawczyk probes of stalled tri-boxes.
+    pub probes: usize,
+    /// Tri-boxes discarded by a probe.
+    pub probe_exclusions: usize,
+}
+
+/// What the loop produced.
+#[derive(Clone, Debug)]
+pub struct Run<S> {
+    /// Tri-boxes with diameter below `eps` (or too small to split further).
+    pub leaves: Vec<Leaf<S>>,
+    /// Tri-boxes left unprocessed by a budget.
+    pub leftovers: Vec<Leaf<S>>,
+    /// The recursion tree.
+    pub nodes: Vec<Node>,
+    /// Counters.
+    pub counters: Counters,
+}
+
+/// A strict sign shared by every coefficient (the polynomial has that sign on
+/// the whole tri-box), rigorous for the interval kernel.
+pub fn uniform_sign<S: Num>(f: &TriBezier<S>) -> Option<Sign> {
+    let first = f.coeffs()[0].sign_class();
+    let strict = matches!(first, Sign::Positive | Sign::Negative);
+    (strict && f.coeffs().iter().all(|c| c.sign_class() == first)).then_some(first)
+}
+
+/// Runs Algorithm 1 on the root triangle, on which `f` and `g` are given.
+/// `probe` is asked about stalled small tri-boxes (see [`Limits::probe_below`]).
+pub fn run<S: Num>(
+    f: &TriBezier<S>,
+    g: &TriBezier<S>,
+    limits: &Limits,
+    probe: &mut dyn FnMut(&TriBox) -> Probe,
+) -> Run<S> {
+    let mut out = Run {
+        leaves: Vec::new(),
+        leftovers: Vec::new(),
+        nodes: Vec::new(),
+        counters: Counters::default(),
+    };
+    let root = TriBox::unit();
+    out.nodes.push(Node {
+        parent: None,
+        level: 0,
+        diam: root.diam(),
+    });
+    let mut stack = vec![Leaf {
+        tb: root,
+        node: 0,
+        fa: f.clone(),
+        fb: g.clone(),
+    }];
+    if uniform_sign(f).is_some() || uniform_sign(g).is_some() {
+        out.counters.sign_exclusions += 1;
+        return out;
+    }
+    while let Some(item) = stack.pop() {
+        let node = out.nodes[item.node];
+        if item.tb.diam() < limits.eps || too_small(&item.tb) {
+            out.leaves.push(item);
+            continue;
+        }
+        if out.counters.boxes >= limits.max_boxes || node.level >= limits.max_depth {
+            out.leftovers.push(item);
+            continue;
+        }
+        out.counters.boxes += 1;
+        step(f, g, item, limits, &mut out, &mut stack, probe);
+    }
+    out
+}
+
+/// A tri-box whose vertices are a few ulps apart cannot be clipped or split
+/// reliably any more.
+fn too_small(tb: &TriBox) -> bool {
+    let scale = tb.verts.iter().flatten().fold(1.0f64, |m, x| m.max(x.abs()));
+    tb.diam() < 64.0 * f64::EPSILON * scale
+}
+
+fn restrict<S: Num>(f: &TriBezier<S>, tb: &TriBox) -> TriBezier<S> {
+    let verts = tb
+        .verts
+        .map(|[s, t]| [S::pt(s), S::pt(t), S::pt(1.0) - S::pt(s) - S::pt(t)]);
+    f.subdivide(&verts)
+}
+
+fn step<S: Num>(
+    f: &TriBezier<S>,
+    g: &TriBezier<S>,
+    item: Leaf<S>,
+    limits: &Limits,
+    out: &mut Run<S>,
+    stack: &mut Vec<Leaf<S>>,
+    probe: &mut dyn FnMut(&TriBox) -> Probe,
+) {
+    let level = out.nodes[item.node].level + 1;
+    let diam = item.tb.diam();
+    let mins = match clip_bounds(limits.method, &item.fa, &item.fb, item.tb.incenter_bary()) {
+        ClipBounds::Empty => {
+            out.counters.clip_exclusions += 1;
+            return;
+        }
+        ClipBounds::Keep(m) => m,
+    };
+    let clipped = if mins.iter().sum::<f64>() > 0.0 {
+        item.tb.clip(mins)
+    } else {
+        None
+    };
+    let (tb, fa, fb) = match clipped {
+        Some(tb) if tb.diam() < diam => {
+            out.counters.clips += 1;
+            let (fa, fb) = (restrict(f, &tb), restrict(g, &tb));
+            (tb, fa, fb)
+        }
+        _ => (item.tb, item.fa, item.fb),
+    };
+    if uniform_sign(&fa).is_some() || uniform_sign(&fb).is_some() {
+        out.counters.sign_exclusions += 1;
+        return;
+    }
+    let new_diam = tb.diam();
+    if new_diam <= 0.5 * diam {
+        let node = push_node(out, item.node, level, new_diam);
+        stack.push(Leaf { tb, node, fa, fb });
+        return;
+    }
+    if new_diam < limits.probe_below {
+        out.counters.probes += 1;
+        match probe(&tb) {
+            Probe::NoRoot => {
+                out.counters.probe_exclusions += 1;
+                return;
+            }
+            Probe::Unique => {
+                let node = push_node(out, item.node, level, new_diam);
+                out.leaves.push(Leaf { tb, node, fa, fb });
+                return;
+            }
+            Probe::Undecided if new_diam < SINGULAR_FLOOR => {
+                let node = push_node(out, item.node, level, new_diam);
+                out.leaves.push(Leaf { tb, node, fa, fb });
+                return;
+            }
+            Probe::Undecided => {}
+        }
+    }
+    let Some(kids) = tb.split4() else {
+        // Collapsed at the rounding floor: hand it to the certification phase.
+        let node = push_node(out, item.node, level, new_diam);
+        out.leaves.push(Leaf { tb, node, fa, fb });
+        return;
+    };
+    out.counters.splits += 1;
+    // Push in reverse so the corner at V1 is processed first.
+    for kid in kids.into_iter().rev() {
+        let (ka, kb) = (restrict(f, &kid), restrict(g, &kid));
+        if uniform_sign(&ka).is_some() || uniform_sign(&kb).is_some() {
+            out.counters.sign_exclusions += 1;
+            continue;
+        }
+        let node = push_node(out, item.node, level, kid.diam());
+        stack.push(Leaf {
+            tb: kid,
+            node,
+            fa: ka,
+            fb: kb,
+        });
+    }
+}
+
+fn push_node<S>(out: &mut Run<S>, parent: usize, level: usize, diam: f64) -> usize {
+    out.nodes.push(Node {
+        parent: Some(parent),
+        level,
+        diam,
+    });
+    out.nodes.len() - 1
+}
+
+/// The diameters along the path from the root to `node`, indexed by level.
+pub fn path_diameters(nodes: &[Node], node: usize) -> Vec<f64> {
+    let mut out = Vec::new();
+    let mut cur = Some(node);
+    while let Some(i) = cur {
+        out.push(nodes[i].diam);
+        cur = nodes[i].parent;
+    }
+    out.reverse();
+    out
+}

@@ -1,0 +1,470 @@
+//! Fat curves and the clipping bounds they imply (Liu et al. 2016, §2.3.2–2.3.3).
+//!
+//! Everything here lives in a tri-box's local Cartesian coordinates `(s, t)`:
+//! the tri-box is `{s, t ≥ 0, s + t ≤ 1}` and its barycentric coordinates are
+//! `(u, v, w) = (s, t, 1 − s − t)`.
+//!
+//! A *fat curve* of `f` is `{ |p| ≤ δ }` for a low-degree `p` with
+//! `|f − p| ≤ δ` on the tri-box, so it contains `f = 0` there. The feasible
+//! region is `R = tri-box ∩ fat curves`, and the clip keeps
+//! `{u ≥ u_min, v ≥ v_min, w ≥ w_min}` with `u_min ≤ min_R u`, etc.
+//!
+//! # Why the candidate set is complete
+//! `R` is compact; a minimizer `p*` of a linear function `ℓ` (here `u`, `v` or
+//! `w`) over `R` lies on the boundary. Either `p*` is on two constraint curves
+//! (an intersection: the paper's types 1–3 and the triangle vertices), or on
+//! one curve at a smooth point where `∇ℓ ∥ ∇(curve)`. On a line that means the
+//! line is a level set of `ℓ`, and then the end points of that boundary piece —
+//! intersections again — are minimizers too; on a conic it is a tangency point
+//! (type 4) or the conic's centre (a singular point of a degenerate level set).
+//! So `min_R ℓ = min` over the *feasible* candidates of these kinds.
+//!
+//! # Rigor
+//! With the interval kernel every candidate is an enclosure of the exact
+//! candidate of the exact constraint curves, feasibility is tested as
+//! "possibly feasible", and the bound is the lower end of the enclosures, so
+//! `u_min` is a rigorous lower bound. Where an enclosure cannot be bounded
+//! (nearly parallel lines, a nearly degenerate quadratic) it is clamped to
+//! `[0, 1]` — always valid, because feasible points have `s, t ∈ [0, 1]` —
+//! which only weakens the clip. If no candidate is possibly feasible, `R` is
+//! empty: the tri-box holds no root.
+
+use super::num::Num;
+use crate::poly::TriBezier;
+use crate::scalar::Sign;
+
+/// `a0 + a1 s + a2 t`.
+#[derive(Clone, Copy, Debug)]
+pub struct Linear<S> {
+    /// `[a0, a1, a2]`.
+    pub c: [S; 3],
+}
+
+/// `c0 + c1 s + c2 t + c3 s² + c4 s t + c5 t²`.
+#[derive(Clone, Copy, Debug)]
+pub struct Quadratic<S> {
+    /// `[c0, c1, c2, c3, c4, c5]`.
+    pub c: [S; 6],
+}
+
+impl<S: Num> Linear<S> {
+    /// The monomial form of a degree-1 BB polynomial on the tri-box.
+    pub fn from_bb(p: &TriBezier<S>) -> Self {
+        debug_assert_eq!(p.degree(), 1);
+        let c = p.coeffs(); // storage order: f_001, f_100, f_010
+        Self {
+            c: [c[0], c[1] - c[0], c[2] - c[0]],
+        }
+    }
+
+    /// Value at `(s, t)`.
+    pub fn eval(&self, s: S, t: S) -> S {
+        self.c[0] + self.c[1] * s + self.c[2] * t
+    }
+
+    fn shifted(&self, d: f64) -> Self {
+        Self {
+            c: [self.c[0] - S::pt(d), self.c[1], self.c[2]],
+        }
+    }
+}
+
+impl<S: Num> Quadratic<S> {
+    /// The monomial form of a degree-2 BB polynomial on the tri-box:
+    /// with `r = 1 − s − t`, `f = f200 s² + f020 t² + f002 r² + 2 f110 st + 2 f101 sr + 2 f011 tr`.
+    pub fn from_bb(p: &TriBezier<S>) -> Self {
+        debug_assert_eq!(p.degree(), 2);
+        let c = p.coeffs(); // f002, f101, f200, f011, f110, f020
+        let (f002, f101, f200, f011, f110, f020) = (c[0], c[1], c[2], c[3], c[4], c[5]);
+        let two = S::pt(2.0);
+        Self {
+            c: [
+                f002,
+                two * (f101 - f002),
+                two * (f011 - f002),
+                f200 + f002 - two * f101,
+                two * (f110 + f002 - f101 - f011),
+                f020 + f002 - two * f011,
+            ],
+        }
+    }
+
+    /// Value at `(s, t)`.
+    pub fn eval(&self, s: S, t: S) -> S {
+        let c = &self.c;
+        c[0] + s * (c[1] + c[3] * s + c[4] * t) + t * (c[2] + c[5] * t)
+    }
+
+    fn shifted(&self, d: f64) -> Self {
+        let mut c = self.c;
+        c[0] = c[0] - S::pt(d);
+        Self { c }
+    }
+
+    /// The lines where the level curves of `Q` are tangent to `s = const`
+    /// (`∂Q/∂t = 0`), `t = const` (`∂Q/∂s = 0`) and `w = const`
+    /// (`∂Q/∂s = ∂Q/∂t`).
+    fn tangency_lines(&self) -> [Linear<S>; 3] {
+        let c = &self.c;
+        let two = S::pt(2.0);
+        [
+            Linear {
+                c: [c[2], c[4], two * c[5]],
+            },
+            Linear {
+                c: [c[1], two * c[3], c[4]],
+            },
+            Linear {
+                c: [c[1] - c[2], two * c[3] - c[4], c[4] - two * c[5]],
+            },
+        ]
+    }
+}
+
+/// `|p| ≤ δ` for a linear or quadratic `p`.
+#[derive(Clone, Copy, Debug)]
+pub enum Fat<S> {
+    /// A fat line: two parallel lines.
+    Line(Linear<S>, f64),
+    /// A fat conic: two level curves of a quadratic.
+    Conic(Quadratic<S>, f64),
+}
+
+impl<S: Num> Fat<S> {
+    fn possibly_contains(&self, s: S, t: S) -> bool {
+        let (val, d) = match self {
+            Fat::Line(l, d) => (l.eval(s, t), *d),
+            Fat::Conic(q, d) => (q.eval(s, t), *d),
+        };
+        val.possibly_le(d) && val.possibly_ge(-d)
+    }
+}
+
+/// The outcome of a clipping computation in local barycentric coordinates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ClipBounds {
+    /// Proven: no root in the tri-box.
+    Empty,
+    /// Every root has `u ≥ mins[0]`, `v ≥ mins[1]`, `w ≥ mins[2]` (each in `[0, 1]`).
+    Keep([f64; 3]),
+}
+
+struct Bounds {
+    mins: [f64; 3],
+    any: bool,
+}
+
+impl Bounds {
+    fn new() -> Self {
+        Self {
+            mins: [f64::INFINITY; 3],
+            any: false,
+        }
+    }
+
+    fn add<S: Num>(&mut self, s: S, t: S) {
+        let w = S::pt(1.0) - s - t;
+        self.any = true;
+        self.mins[0] = self.mins[0].min(s.lower());
+        self.mins[1] = self.mins[1].min(t.lower());
+        self.mins[2] = self.mins[2].min(w.lower());
+    }
+
+    fn finish(self) -> ClipBounds {
+        if !self.any {
+            return ClipBounds::Empty;
+        }
+        let m = self.mins.map(|x| if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) });
+        if m[0] + m[1] + m[2] > 1.0 {
+            ClipBounds::Empty
+        } else {
+            ClipBounds::Keep(m)
+        }
+    }
+}
+
+/// The clipping bounds of `R = tri-box ∩ fats` (see the module docs).
+pub fn clip_against_fat_curves<S: Num>(fats: &[Fat<S>]) -> ClipBounds {
+    let edges = [
+        Linear {
+            c: [S::pt(0.0), S::pt(1.0), S::pt(0.0)],
+        },
+        Linear {
+            c: [S::pt(0.0), S::pt(0.0), S::pt(1.0)],
+        },
+        Linear {
+            c: [S::pt(-1.0), S::pt(1.0), S::pt(1.0)],
+        },
+    ];
+    // Boundary lines, tagged by source so the two sides of one strip (parallel
+    // by construction) are never intersected with each other.
+    let mut lines: Vec<(usize, Linear<S>)> = edges.iter().enumerate().map(|(i, l)| (i, *l)).collect();
+    let mut levels: Vec<Quadratic<S>> = Vec::new();
+    let mut tangents: Vec<Linear<S>> = Vec::new();
+    let mut centres: Vec<[Linear<S>; 2]> = Vec::new();
+    for (idx, fat) in fats.iter().enumerate() {
+        match fat {
+            Fat::Line(l, d) => {
+                lines.push((3 + idx, l.shifted(*d)));
+                lines.push((3 + idx, l.shifted(-*d)));
+            }
+            Fat::Conic(q, d) => {
+                levels.push(q.shifted(*d));
+                levels.push(q.shifted(-*d));
+                let tl = q.tangency_lines();
+                tangents.extend(tl);
+                centres.push([tl[0], tl[1]]);
+            }
+        }
+    }
+    let feasible = |s: S, t: S| {
+        s.possibly_ge(0.0)
+            && t.possibly_ge(0.0)
+            && (S::pt(1.0) - s - t).possibly_ge(0.0)
+            && fats.iter().all(|f| f.possibly_contains(s, t))
+    };
+    let mut bounds = Bounds::new();
+    let mut push = |pts: &[[S; 2]]| {
+        for &[s, t] in pts {
+            if feasible(s, t) {
+                bounds.add(s, t);
+            }
+        }
+    };
+    for a in 0..lines.len() {
+        for b in a + 1..lines.len() {
+            if lines[a].0 != lines[b].0 {
+                push(&line_line(&lines[a].1, &lines[b].1));
+            }
+        }
+    }
+    for q in &levels {
+        for (_, l) in &lines {
+            push(&line_conic(l, q));
+        }
+        for l in &tangents {
+            push(&line_conic(l, q));
+        }
+    }
+    for [a, b] in &centres {
+        push(&line_line(a, b));
+    }
+    bounds.finish()
+}
+
+/// Whether `a0 + a1 s + a2 t = 0` can meet the unit square `[0, 1]²` (the
+/// tri-box lies inside it): `false` only when proven not to.
+fn meets_unit_square<S: Num>(l: &Linear<S>) -> bool {
+    let unit = S::pt(0.0).hull(S::pt(1.0));
+    let range = l.eval(unit, unit);
+    // For f64 `hull` is the midpoint: fall back to the corner values.
+    if S::KERNEL.is_rigorous() {
+        range.possibly_le(0.0) && range.possibly_ge(0.0)
+    } else {
+        let v = [
+            l.eval(S::pt(0.0), S::pt(0.0)),
+            l.eval(S::pt(1.0), S::pt(0.0)),
+            l.eval(S::pt(0.0), S::pt(1.0)),
+            l.eval(S::pt(1.0), S::pt(1.0)),
+        ];
+        let lo = v.iter().map(|x| x.lower()).fold(f64::INFINITY, f64::min);
+        let hi = v.iter().map(|x| x.upper()).fold(f64::NEG_INFINITY, f64::max);
+        lo <= 0.0 && hi >= 0.0
+    }
+}
+
+/// Enclosures of the intersection of two lines, restricted to `[0, 1]²`.
+/// Exactly parallel lines (determinant provably zero) give nothing: they
+/// never meet in a single point, and where they coincide the minimizers are
+/// end points found through other pairs.
+fn line_line<S: Num>(a: &Linear<S>, b: &Linear<S>) -> Vec<[S; 2]> {
+    if !meets_unit_square(a) || !meets_unit_square(b) {
+        return Vec::new();
+    }
+    let det = a.c[1] * b.c[2] - a.c[2] * b.c[1];
+    if det.sign_class() == Sign::Zero {
+        return Vec::new();
+    }
+    // a1 s + a2 t = −a0, b1 s + b2 t = −b0 (Cramer).
+    let ns = a.c[2] * b.c[0] - a.c[0] * b.c[2];
+    let nt = a.c[0] * b.c[1] - a.c[1] * b.c[0];
+    let mut out = Vec::new();
+    for s in S::div_pieces(ns, det).into_iter().flatten() {
+        for t in S::div_pieces(nt, det).into_iter().flatten() {
+            if let (Some(s), Some(t)) = (s.clamp_to(0.0, 1.0), t.clamp_to(0.0, 1.0)) {
+                out.push([s, t]);
+            }
+        }
+    }
+    out
+}
+
+/// Enclosures of the intersection of a line with the level curve `Q = 0`,
+/// restricted to `[0, 1]²`.
+fn line_conic<S: Num>(l: &Linear<S>, q: &Quadratic<S>) -> Vec<[S; 2]> {
+    if !meets_unit_square(l) {
+        return Vec::new();
+    }
+    let [a0, a1, a2] = l.c;
+    if a1.sign_class() == Sign::Zero && a2.sign_class() == Sign::Zero {
+        return Vec::new(); // "a0 = 0": no line, or every point (see module docs).
+    }
+    // Parametrize by the coordinate with the larger coefficient on the other.
+    let by_s = a2.mag() >= a1.mag() || S::KERNEL.is_rigorous() && a2.nonzero() && !a1.nonzero();
+    let (num_a, den, num_k) = if by_s { (a1, a2, a0) } else { (a2, a1, a0) };
+    if !den.nonzero() {
+        // Neither coefficient is provably non-zero: the whole segment.
+        let unit = S::pt(0.0).hull(S::pt(1.0));
+        return vec![[unit, unit]];
+    }
+    // other = m · x + k
+    let m = -num_a / den;
+    let k = -num_k / den;
+    let c = &q.c;
+    let two = S::pt(2.0);
+    let (alpha, beta, gamma) = if by_s {
+        // Q(s, m s + k)
+        (
+            c[3] + c[4] * m + c[5] * m * m,
+            c[1] + c[2] * m + c[4] * k + two * c[5] * m * k,
+            c[0] + c[2] * k + c[5] * k * k,
+        )
+    } else {
+        // Q(m t + k, t)
+        (
+            c[5] + c[4] * m + c[3] * m * m,
+            c[2] + c[1] * m + c[4] * k + two * c[3] * m * k,
+            c[0] + c[1] * k + c[3] * k * k,
+        )
+    };
+    let mut out = Vec::new();
+    for x in quadratic_roots_in_unit(alpha, beta, gamma) {
+        if let Some(y) = (m * x + k).clamp_to(0.0, 1.0) {
+            out.push(if by_s { [x, y] } else { [y, x] });
+        }
+    }
+    out
+}
+
+/// Enclosures of every root of `α x² + β x + γ` in `[0, 1]` (for all members
+/// of the coefficient enclosures). When both `α` and `β` may vanish, the
+/// whole of `[0, 1]` is returned.
+pub fn quadratic_roots_in_unit<S: Num>(alpha: S, beta: S, gamma: S) -> Vec<S> {
+    let unit = || S::pt(0.0).hull(S::pt(1.0));
+    let disc = beta * beta - S::pt(4.0) * alpha * gamma;
+    let Some(sq) = disc.sqrt_nonneg() else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    let mut keep = |x: S| {
+        if let Some(x) = x.clamp_to(0.0, 1.0) {
+            out.push(x);
+        }
+    };
+    if beta.nonzero() {
+        // q = −(β + sign(β)·√D)/2 has |q| ≥ |β|/2 > 0: roots q/α and γ/q.
+        let q = (if beta.lower() > 0.0 { -(beta + sq) } else { sq - beta }) / S::pt(2.0);
+        keep(gamma / q);
+        for piece in S::div_pieces(q, alpha).into_iter().flatten() {
+            keep(piece);
+        }
+    } else if alpha.nonzero() {
+        let two_a = S::pt(2.0) * alpha;
+        keep((-beta + sq) / two_a);
+        keep((-beta - sq) / two_a);
+    } else if S::KERNEL.is_rigorous() {
+        out.push(unit());
+    } else if gamma.sign_class() == Sign::Zero {
+        out.push(S::pt(0.0));
+    }
+    out
+}
+
+/// Bézier clipping bounds of one equation (Roth et al. 2000, as used in Liu et
+/// al. 2016 §4): the control net `(i/n, j/n, f_ijk)` bounds the graph, so the
+/// zero set projects into the hull of the points `(i/n, f_ijk)` cut by
+/// `f = 0`, and likewise for `j` and `k`. The hull meets the axis in the
+/// convex hull of the zero-valued points and the crossings of segments between
+/// a positive and a negative point; the minimum of those is the bound.
+pub fn bezier_bounds<S: Num>(f: &TriBezier<S>) -> ClipBounds {
+    let n = f.degree();
+    let pts: Vec<([usize; 3], S)> = crate::poly::tri_indices(n)
+        .zip(f.coeffs().iter().copied())
+        .map(|((i, j, k), c)| ([i, j, k], c))
+        .collect();
+    let pos: Vec<_> = pts.iter().filter(|p| p.1.sign_class() == Sign::Positive).collect();
+    let neg: Vec<_> = pts.iter().filter(|p| p.1.sign_class() == Sign::Negative).collect();
+    let zero: Vec<_> = pts
+        .iter()
+        .filter(|p| matches!(p.1.sign_class(), Sign::Zero | Sign::Straddles))
+        .collect();
+    if zero.is_empty() && (pos.is_empty() || neg.is_empty()) {
+        return ClipBounds::Empty;
+    }
+    let nn = S::from_i64(n.max(1) as i64);
+    let mut mins = [f64::INFINITY; 3];
+    for (coord, m) in mins.iter_mut().enumerate() {
+        for z in &zero {
+            *m = m.min(z.0[coord] as f64 / n.max(1) as f64);
+        }
+        for p in &pos {
+            for q in &neg {
+                let (xp, xq) = (S::from_i64(p.0[coord] as i64) / nn, S::from_i64(q.0[coord] as i64) / nn);
+                let x = xp + (xq - xp) * (p.1 / (p.1 - q.1));
+                *m = m.min(x.lower());
+            }
+        }
+    }
+    let m = mins.map(|x| if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) });
+    if m[0] + m[1] + m[2] > 1.0 {
+        ClipBounds::Empty
+    } else {
+        ClipBounds::Keep(m)
+    }
+}
+
+/// Combines bounds that must hold together (both equations vanish at a root).
+pub fn intersect_bounds(a: ClipBounds, b: ClipBounds) -> ClipBounds {
+    match (a, b) {
+        (ClipBounds::Keep(x), ClipBounds::Keep(y)) => {
+            let m = [x[0].max(y[0]), x[1].max(y[1]), x[2].max(y[2])];
+            if m[0] + m[1] + m[2] > 1.0 {
+                ClipBounds::Empty
+            } else {
+                ClipBounds::Keep(m)
+            }
+        }
+        _ => ClipBounds::Empty,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use inari::Interval;
+
+    #[test]
+    fn quadratic_roots_enclosed() {
+        let r: Vec<Interval> = quadratic_roots_in_unit(Interval::pt(1.0), Interval::pt(-0.75), Interval::pt(0.125));
+        // roots 0.25 and 0.5
+        assert_eq!(r.len(), 2);
+        assert!(r.iter().any(|x| x.contains(0.25)) && r.iter().any(|x| x.contains(0.5)));
+        // nearly linear: α = 0 exactly, root at 0.4
+        let r: Vec<Interval> = quadratic_roots_in_unit(Interval::pt(0.0), Interval::pt(1.0), Interval::pt(-0.4));
+        assert!(r.iter().any(|x| x.contains(0.4)));
+    }
+
+    #[test]
+    fn strip_clip_is_rigorous() {
+        // f = s − 0.3 (exact line), δ = 0: all roots have u = 0.3.
+        let l = Linear {
+            c: [Interval::pt(-0.3), Interval::pt(1.0), Interval::pt(0.0)],
+        };
+        let ClipBounds::Keep(m) = clip_against_fat_curves(&[Fat::Line(l, 0.0)]) else {
+            panic!()
+        };
+        assert!(m[0] <= 0.3 && m[0] > 0.29);
+        assert_eq!(m[1], 0.0);
+        assert!(m[2] <= 0.0 + 1e-15);
+    }
+}

@@ -1,0 +1,157 @@
+//! Krawczyk's interval Newton operator: existence, uniqueness and exclusion
+//! proofs for a root of `F = (f, g)` in a box.
+//!
+//! # Definition
+//! For a box `X`, `x̃ = mid X`, `Y ≈ F'(x̃)⁻¹` (any real matrix, computed in
+//! f64) and an interval enclosure `F'(X)` of the Jacobian over `X`:
+//! ```text
+//! K(X) = x̃ − Y F(x̃) + (I − Y F'(X)) (X − x̃)
+//! ```
+//! * `K(X) ⊂ int X` ⟹ `F` has exactly one zero in `X`, it lies in `K(X)`, and
+//!   it is simple (`F'` is non-singular there) — Krawczyk 1969, Rump 1983.
+//! * `K(X) ∩ X = ∅` ⟹ `F` has no zero in `X` (every zero in `X` lies in `K(X)`).
+//!
+//! Everything is evaluated with outward rounding (inari), on the system's
+//! interval coefficients, so the verdicts hold for every polynomial system in
+//! the coefficient enclosures.
+
+use crate::poly::TriBezier;
+use crate::scalar::point;
+use inari::Interval;
+
+/// A 2-D box `[u, v]`.
+pub type IBox = [Interval; 2];
+
+/// The system `F = (f, g)` with its Jacobian, as BB polynomials in the
+/// coordinates the boxes are given in (evaluated by de Casteljau at
+/// barycentric `(u, v, 1 − u − v)`; the polynomials extend beyond their
+/// triangle).
+#[derive(Clone, Debug)]
+pub struct System {
+    f: TriBezier<Interval>,
+    g: TriBezier<Interval>,
+    jac: [TriBezier<Interval>; 4],
+}
+
+/// What a Krawczyk step proves about a box.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Verdict {
+    /// Exactly one root in the box, simple, and it lies in the given
+    /// sub-box `K(X)`.
+    Unique(IBox),
+    /// No root in the box.
+    NoRoot,
+    /// Neither could be proven; the root set within the box lies in the given
+    /// enclosure `K(X) ∩ X`.
+    Undecided(IBox),
+}
+
+impl System {
+    /// The system `(f, g)`.
+    pub fn new(f: TriBezier<Interval>, g: TriBezier<Interval>) -> Self {
+        let jac = [f.deriv_u(), f.deriv_v(), g.deriv_u(), g.deriv_v()];
+        Self { f, g, jac }
+    }
+
+    fn eval(p: &TriBezier<Interval>, x: IBox) -> Interval {
+        p.eval(x[0], x[1])
+    }
+
+    /// `F(x)` enclosed.
+    pub fn value(&self, x: IBox) -> [Interval; 2] {
+        [Self::eval(&self.f, x), Self::eval(&self.g, x)]
+    }
+
+    /// One Krawczyk step on `x`.
+    pub fn krawczyk(&self, x: IBox) -> Verdict {
+        let mid = [x[0].mid(), x[1].mid()];
+        if !(mid[0].is_finite() && mid[1].is_finite()) {
+            return Verdict::Undecided(x);
+        }
+        let xm = [point(mid[0]), point(mid[1])];
+        let fx = self.value(xm);
+        let j = self.jac.each_ref().map(|p| Self::eval(p, x));
+        let jm = self.jac.each_ref().map(|p| Self::eval(p, xm).mid());
+        let Some(y) = inverse2(jm) else {
+            return Verdict::Undecided(x);
+        };
+        let y = y.map(point);
+        // K = x̃ − Y F(x̃) + (I − Y J) (X − x̃)
+        let yf = [y[0] * fx[0] + y[1] * fx[1], y[2] * fx[0] + y[3] * fx[1]];
+        let one = point(1.0);
+        let m = [
+            one - (y[0] * j[0] + y[1] * j[2]),
+            -(y[0] * j[1] + y[1] * j[3]),
+            -(y[2] * j[0] + y[3] * j[2]),
+            one - (y[2] * j[1] + y[3] * j[3]),
+        ];
+        let d = [x[0] - xm[0], x[1] - xm[1]];
+        let k = [
+            xm[0] - yf[0] + m[0] * d[0] + m[1] * d[1],
+            xm[1] - yf[1] + m[2] * d[0] + m[3] * d[1],
+        ];
+        if k.iter().any(|c| c.is_empty()) {
+            return Verdict::Undecided(x);
+        }
+        if k[0].interior(x[0]) && k[1].interior(x[1]) {
+            Verdict::Unique(k)
+        } else {
+            let meet = [k[0].intersection(x[0]), k[1].intersection(x[1])];
+            if meet[0].is_empty() || meet[1].is_empty() {
+                Verdict::NoRoot
+            } else {
+                Verdict::Undecided(meet)
+            }
+        }
+    }
+
+    /// Tries to prove that the box `x0` holds exactly one root, by Krawczyk
+    /// with epsilon-inflation: every box tried contains `x0`, so on success all
+    /// roots in `x0` are the one root. On success returns the contracted box
+    /// (iterated `K` until it stops shrinking), which holds that root.
+    pub fn certify(&self, x0: IBox) -> Verdict {
+        let mut x = x0.map(|c| inflate(c, 0.1));
+        for _ in 0..6 {
+            match self.krawczyk(x) {
+                Verdict::Unique(k) => return Verdict::Unique(self.contract(k)),
+                Verdict::NoRoot => return Verdict::NoRoot,
+                Verdict::Undecided(k) => {
+                    // Grow around the hull of the candidate and the original box.
+                    x = [0, 1].map(|i| inflate(k[i].convex_hull(x0[i]), 0.5));
+                }
+            }
+        }
+        Verdict::Undecided(x)
+    }
+
+    /// Iterates `X ← K(X)` while it keeps proving uniqueness and shrinking.
+    fn contract(&self, mut k: IBox) -> IBox {
+        for _ in 0..8 {
+            match self.krawczyk(k) {
+                Verdict::Unique(next) if width(next) < width(k) => k = next,
+                _ => break,
+            }
+        }
+        k
+    }
+}
+
+/// The larger side of a box.
+pub fn width(x: IBox) -> f64 {
+    x[0].wid().max(x[1].wid())
+}
+
+/// `x` widened by `rel` of its width plus a few ulps on each side.
+fn inflate(x: Interval, rel: f64) -> Interval {
+    let r = rel * x.wid() + 4.0 * f64::EPSILON * x.mag().max(f64::MIN_POSITIVE);
+    crate::scalar::interval((x.inf() - r).next_down(), (x.sup() + r).next_up())
+}
+
+fn inverse2(m: [f64; 4]) -> Option<[f64; 4]> {
+    let det = m[0] * m[3] - m[1] * m[2];
+    let scale = (m[0].abs() + m[1].abs()) * (m[2].abs() + m[3].abs());
+    if det == 0.0 || !det.is_finite() || det.abs() < 1e-14 * scale {
+        return None;
+    }
+    Some([m[3] / det, -m[1] / det, -m[2] / det, m[0] / det])
+}

@@ -1,0 +1,164 @@
+//! The four clipping methods of Liu et al. (2016) and the preprocessing of
+//! hybrid clipping (§2.3.1, Eqs. (7)–(8)).
+
+use super::fatcurve::{bezier_bounds, clip_against_fat_curves, intersect_bounds, ClipBounds, Fat, Linear, Quadratic};
+use super::num::Num;
+use crate::poly::TriBezier;
+use std::fmt;
+use std::str::FromStr;
+
+/// A clipping method.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// Triangular Bézier clipping (Roth et al. 2000): convex hulls of both
+    /// control nets.
+    Bezier,
+    /// Linear fat curves for both equations.
+    Linear,
+    /// Hybrid clipping without preprocessing: a fat line for `f`, a fat conic
+    /// for `g`.
+    HcNoPre,
+    /// Hybrid clipping: a fat line for the preprocessed `f̂`, a fat conic for `g`.
+    Hc,
+}
+
+impl Method {
+    /// All methods, in the paper's table order.
+    pub const ALL: [Method; 4] = [Method::Bezier, Method::Linear, Method::HcNoPre, Method::Hc];
+
+    /// The CLI / JSON name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Bezier => "bezier",
+            Method::Linear => "linear",
+            Method::HcNoPre => "hc-nopre",
+            Method::Hc => "hc",
+        }
+    }
+}
+
+impl fmt::Display for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Method {
+    type Err = crate::Error;
+    fn from_str(s: &str) -> crate::Result<Self> {
+        Method::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| crate::Error::Shape(format!("unknown method '{s}' (bezier, linear, hc-nopre, hc)")))
+    }
+}
+
+/// The degree-`k` fat curve of `f` on its tri-box: the L2-best approximant
+/// (Algorithm 2) with `δ` rounded up. For `deg f ≤ k` the approximant is `f`
+/// itself (rounded to points) and `δ` covers the coefficient enclosures.
+pub fn fat_curve<S: Num>(f: &TriBezier<S>, k: usize) -> Fat<S> {
+    let (approx, delta) = if f.degree() > k {
+        let r = f.reduce_l2(k).expect("k < degree");
+        (r.approx, r.delta.upper())
+    } else {
+        let pts = f.map(|c| c.to_point());
+        let d = f
+            .coeffs()
+            .iter()
+            .zip(pts.coeffs())
+            .map(|(a, b)| (*a - *b).abs().upper())
+            .fold(0.0, f64::max);
+        (pts.elevate_cached(k), d)
+    };
+    match k {
+        1 => Fat::Line(Linear::from_bb(&approx), delta),
+        _ => Fat::Conic(Quadratic::from_bb(&approx), delta),
+    }
+}
+
+/// `f̂ = ℓ f^α + (1 − ℓ) f^β` with `ℓ = ℓ0 + ℓ1 u + ℓ2 v` chosen (in f64) so
+/// that the Hessian of `f̂` vanishes at the point `c` (local barycentric):
+/// `A(c) ℓ = −∇²f^β(c)` with `A` of Eq. (8), written with `Δ = f^α − f^β`:
+/// ```text
+/// A = [ Δuu   u Δuu + 2Δu   v Δuu        ]
+///     [ Δuv   u Δuv + Δv    v Δuv + Δu   ]
+///     [ Δvv   u Δvv         v Δvv + 2Δv  ]
+/// ```
+/// (Eq. (8) as printed checks out: it is the Hessian of `ℓ Δ` collected by
+/// `ℓ0, ℓ1, ℓ2`.) `None` when `A` is numerically singular — the caller then
+/// uses `f^α` (the paper's fallback).
+///
+/// Any `ℓ` keeps the method rigorous: every root of `{f^α, f^β}` is a root of
+/// `{f̂, f^β}`, and `f̂`'s coefficients are enclosed in the kernel's arithmetic.
+pub fn preprocess<S: Num>(fa: &TriBezier<S>, fb: &TriBezier<S>, c: [f64; 3]) -> Option<TriBezier<S>> {
+    let delta = fa.sub(fb);
+    let d64 = delta.map(|x| x.to_f64());
+    let b64 = fb.map(|x| x.to_f64());
+    let at = |p: &TriBezier<f64>| p.eval_bary(&c);
+    let (du, dv) = (d64.deriv_u(), d64.deriv_v());
+    let (duu, duv, dvv) = (at(&du.deriv_u()), at(&du.deriv_v()), at(&dv.deriv_v()));
+    let (du, dv) = (at(&du), at(&dv));
+    let bu = b64.deriv_u();
+    let bv = b64.deriv_v();
+    let rhs = [-at(&bu.deriv_u()), -at(&bu.deriv_v()), -at(&bv.deriv_v())];
+    let (u, v) = (c[0], c[1]);
+    let a = [
+        [duu, u * duu + 2.0 * du, v * duu],
+        [duv, u * duv + dv, v * duv + du],
+        [dvv, u * dvv, v * dvv + 2.0 * dv],
+    ];
+    let l = solve3(a, rhs)?;
+    if l.iter().any(|x| !x.is_finite() || x.abs() > 1e8) {
+        return None;
+    }
+    // ℓ as a degree-1 BB polynomial: values at V3 (0,0), V1 (1,0), V2 (0,1).
+    let ell = TriBezier::new(1, vec![S::pt(l[0]), S::pt(l[0] + l[1]), S::pt(l[0] + l[2])]).ok()?;
+    Some(ell.mul(&delta).add(fb))
+}
+
+/// Gaussian elimination with partial pivoting; `None` when a pivot is tiny
+/// relative to its row (numerically singular).
+fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
+    let scale: Vec<f64> = a.iter().map(|r| r.iter().fold(0.0f64, |m, x| m.max(x.abs()))).collect();
+    if scale.iter().any(|&s| s == 0.0 || !s.is_finite()) {
+        return None;
+    }
+    for col in 0..3 {
+        let piv = (col..3).max_by(|&i, &j| (a[i][col] / scale[i]).abs().total_cmp(&(a[j][col] / scale[j]).abs()))?;
+        if (a[piv][col] / scale[piv]).abs() < 1e-10 {
+            return None;
+        }
+        a.swap(col, piv);
+        b.swap(col, piv);
+        for r in col + 1..3 {
+            let f = a[r][col] / a[col][col];
+            for k in col..3 {
+                a[r][k] -= f * a[col][k];
+            }
+            b[r] -= f * b[col];
+        }
+    }
+    let mut x = [0.0; 3];
+    for r in (0..3).rev() {
+        let s: f64 = (r + 1..3).map(|k| a[r][k] * x[k]).sum();
+        x[r] = (b[r] - s) / a[r][r];
+    }
+    Some(x)
+}
+
+/// One clipping computation on a tri-box (local coordinates): the bounds
+/// `u_min, v_min, w_min` for `method`, or `Empty` when the fat regions (or
+/// hulls) prove the tri-box root-free. `incenter` is the tri-box incenter in
+/// its own barycentric coordinates (for `Hc`).
+pub fn clip_bounds<S: Num>(method: Method, fa: &TriBezier<S>, fb: &TriBezier<S>, incenter: [f64; 3]) -> ClipBounds {
+    match method {
+        Method::Bezier => intersect_bounds(bezier_bounds(fa), bezier_bounds(fb)),
+        Method::Linear => clip_against_fat_curves(&[fat_curve(fa, 1), fat_curve(fb, 1)]),
+        Method::HcNoPre => clip_against_fat_curves(&[fat_curve(fa, 1), fat_curve(fb, 2)]),
+        Method::Hc => {
+            let fhat = preprocess(fa, fb, incenter);
+            let line = fat_curve(fhat.as_ref().unwrap_or(fa), 1);
+            clip_against_fat_curves(&[line, fat_curve(fb, 2)])
+        }
+    }
+}

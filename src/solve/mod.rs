@@ -1,0 +1,617 @@
+//! The certified solver: every root of `f(u, v) = g(u, v) = 0` over the unit
+//! triangle or the unit square.
+//!
+//! Floating point proposes; only interval arithmetic discards or certifies:
+//! * the BB coefficients on every tri-box are interval enclosures computed from
+//!   the input for exactly the reported (`f64`) vertices ([`tribox`]);
+//! * fat-curve widths are rigorous upper bounds, clip bounds are minima over
+//!   enclosed critical points ([`fatcurve`]), check-sign needs every
+//!   coefficient interval strictly on one side of 0 ([`driver`]);
+//! * every final tri-box goes through Krawczyk's operator on the original
+//!   system ([`krawczyk`]).
+//!
+//! Methods: [`Method`] (Liu et al. 2016: Bézier, linear, hybrid with and
+//! without preprocessing).
+
+pub mod degenerate;
+pub mod driver;
+pub mod fatcurve;
+pub mod krawczyk;
+pub mod method;
+pub mod num;
+pub mod tribox;
+
+use crate::error::{Error, Result};
+use crate::poly::{Polynomial, TensorBezier, TriBezier};
+use crate::scalar::{interval, point, Scalar};
+use driver::{path_diameters, Counters, Leaf, Limits, Probe};
+use inari::Interval;
+use krawczyk::{IBox, System, Verdict};
+pub use method::Method;
+
+/// The domain of the unknowns.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Domain {
+    /// `{u, v ≥ 0, u + v ≤ 1}`.
+    Triangle,
+    /// `[0, 1]²`, solved as two triangles (the tensor → triangle conversion).
+    Square,
+}
+
+/// Options of a solve.
+#[derive(Clone, Copy, Debug)]
+pub struct SolveOptions {
+    /// Clipping method (default [`Method::Hc`]).
+    pub method: Method,
+    /// Tri-boxes are refined until their diameter is below `eps` (default
+    /// `1e-12`); certified boxes are then contracted by Krawczyk iteration.
+    pub eps: f64,
+    /// Budget: tri-boxes processed per triangle (default 200,000).
+    pub max_boxes: usize,
+    /// Budget: recursion depth (default 400).
+    pub max_depth: usize,
+    /// Probe stalled tri-boxes (a clip that did not halve) below diameter
+    /// `1e-3` with Krawczyk: certify or exclude them early, and stop
+    /// refining undecided ones below `1e-9` (multiple roots). Default `true`;
+    /// `false` runs the paper's Algorithm 1 unchanged (used by the tables).
+    pub probe: bool,
+}
+
+impl Default for SolveOptions {
+    fn default() -> Self {
+        Self {
+            method: Method::Hc,
+            eps: 1e-12,
+            max_boxes: 200_000,
+            max_depth: 400,
+            probe: true,
+        }
+    }
+}
+
+impl SolveOptions {
+    fn limits(&self) -> Limits {
+        Limits {
+            method: self.method,
+            eps: self.eps,
+            max_boxes: self.max_boxes,
+            max_depth: self.max_depth,
+            probe_below: if self.probe { 1e-3 } else { 0.0 },
+        }
+    }
+}
+
+/// A closed axis-aligned box in `(u, v)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Box2 {
+    /// `[lo, hi]` in `u`.
+    pub u: [f64; 2],
+    /// `[lo, hi]` in `v`.
+    pub v: [f64; 2],
+}
+
+impl Box2 {
+    fn of(x: IBox) -> Self {
+        Self {
+            u: [x[0].inf(), x[0].sup()],
+            v: [x[1].inf(), x[1].sup()],
+        }
+    }
+
+    /// `true` if the point lies in the closed box.
+    pub fn contains(&self, u: f64, v: f64) -> bool {
+        self.u[0] <= u && u <= self.u[1] && self.v[0] <= v && v <= self.v[1]
+    }
+}
+
+/// A certified root.
+#[derive(Clone, Debug)]
+pub struct Root {
+    /// Midpoint of the box.
+    pub u: f64,
+    /// Midpoint of the box.
+    pub v: f64,
+    /// The closed box: it contains exactly one root of the system, and that
+    /// root is simple.
+    pub bx: Box2,
+    /// Always `true` for entries of [`Solution::roots`] (kept for the JSON schema).
+    pub certified: bool,
+    /// The box touches the domain's boundary: the root is on it, or within
+    /// the box's width of it on either side.
+    pub on_boundary: bool,
+    /// Diameters of the tri-boxes holding this root, by level (index 0 is the
+    /// whole domain), along the deepest path that reached it.
+    pub diameters: Vec<f64>,
+}
+
+/// Why a region could not be decided.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ClusterReason {
+    /// Krawczyk neither proved a unique root nor excluded one: a multiple
+    /// (double, tangential) root, or roots closer together than `eps`.
+    KrawczykUndecided,
+}
+
+impl ClusterReason {
+    /// A short description for output.
+    pub fn describe(self) -> &'static str {
+        match self {
+            ClusterReason::KrawczykUndecided => {
+                "Krawczyk undecided: multiple root (tangential curves) or roots closer than eps"
+            }
+        }
+    }
+}
+
+/// An undecided region: it may hold any number of roots (including none).
+#[derive(Clone, Debug)]
+pub struct Cluster {
+    /// A closed box covering the region.
+    pub bx: Box2,
+    /// Why it is undecided.
+    pub reason: ClusterReason,
+    /// Diameters by level along the path to one of its tri-boxes.
+    pub diameters: Vec<f64>,
+}
+
+/// A region a budget left unexplored.
+#[derive(Clone, Debug)]
+pub struct Leftover {
+    /// The triangle, as a box in `(u, v)`.
+    pub bx: Box2,
+    /// Its vertices in `(u, v)` (enclosed: exact for the triangle domain).
+    pub triangle: [[f64; 2]; 3],
+}
+
+/// Counters of a solve.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Tri-boxes processed, clips, splits, exclusions (summed over triangles).
+    pub run: Counters,
+    /// Krawczyk operator evaluations.
+    pub krawczyk_calls: usize,
+    /// Final tri-boxes handed to certification.
+    pub leaves: usize,
+    /// Final tri-boxes proven root-free by Krawczyk.
+    pub krawczyk_exclusions: usize,
+    /// Certified roots dropped because they lie provably outside the domain.
+    pub outside_domain: usize,
+    /// Deepest level reached.
+    pub max_level: usize,
+}
+
+/// The result of a solve.
+///
+/// # Contract
+/// * If `complete` is `true`, every root of the system in the closed domain
+///   lies in one of `roots[..].bx` or `clusters[..].bx`.
+/// * Whatever `complete` says, every root that is not in a `roots` or
+///   `clusters` box lies in a `leftovers` region (the budget stopped there);
+///   `complete` is `true` iff `leftovers` is empty.
+/// * Each `roots[i].bx` contains exactly one root of the system (in the plane —
+///   a box may reach slightly outside the domain; see `on_boundary`), and it
+///   is a simple root. Distinct entries are distinct roots.
+/// * Clusters promise nothing about their content.
+///
+/// These hold for every system whose coefficients lie in the input
+/// enclosures; for exact (rational) input, for that system.
+#[derive(Clone, Debug)]
+pub struct Solution {
+    /// See the contract.
+    pub complete: bool,
+    /// Certified roots.
+    pub roots: Vec<Root>,
+    /// Undecided regions.
+    pub clusters: Vec<Cluster>,
+    /// Regions left by a budget.
+    pub leftovers: Vec<Leftover>,
+    /// Counters.
+    pub stats: Stats,
+}
+
+impl Solution {
+    /// `recursions(ε)`: for each root (and cluster), the first level whose
+    /// tri-box diameter is `< ε`; the maximum over them. `None` if some root's
+    /// path never got below `ε` or there are no roots.
+    pub fn recursions(&self, eps: f64) -> Option<usize> {
+        let paths = self
+            .roots
+            .iter()
+            .map(|r| &r.diameters)
+            .chain(self.clusters.iter().map(|c| &c.diameters));
+        let mut worst: Option<usize> = None;
+        for d in paths {
+            let level = d.iter().position(|&x| x < eps)?;
+            worst = Some(worst.map_or(level, |w: usize| w.max(level)));
+        }
+        worst
+    }
+}
+
+/// How a root triangle's local `(s, t)` maps to the domain's `(u, v)`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Frame {
+    /// `(u, v) = (s, t)`.
+    Identity,
+    /// `(u, v) = (1 − s, 1 − t)` (the square's upper-right half).
+    Reflect,
+}
+
+impl Frame {
+    fn map_box(self, x: IBox) -> IBox {
+        match self {
+            Frame::Identity => x,
+            Frame::Reflect => [point(1.0) - x[0], point(1.0) - x[1]],
+        }
+    }
+
+    fn map_point(self, p: [f64; 2]) -> [f64; 2] {
+        match self {
+            Frame::Identity => p,
+            Frame::Reflect => [1.0 - p[0], 1.0 - p[1]],
+        }
+    }
+}
+
+/// Solves exact polynomials (e.g. from [`parse_polynomial`](crate::parse_polynomial))
+/// over `domain`. Errors: an identically zero equation or a common factor
+/// ([`Error::Degenerate`]; a curve of roots cannot be listed), bad options.
+///
+/// ```
+/// use rootclip::{parse_polynomial, solve::{solve, Domain, SolveOptions}};
+/// let f = parse_polynomial("u^3 - v").unwrap();
+/// let g = parse_polynomial("u^3 + v - 1/4").unwrap();
+/// let sol = solve(&f, &g, Domain::Triangle, &SolveOptions::default()).unwrap();
+/// assert!(sol.complete && sol.roots.len() == 1);
+/// assert!(sol.roots[0].bx.contains(0.5, 0.125));
+/// ```
+pub fn solve(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions) -> Result<Solution> {
+    if f.is_zero() || g.is_zero() {
+        let which = if f.is_zero() { "f" } else { "g" };
+        return Err(Error::Degenerate(format!(
+            "equation {which} is identically zero: every point of the other curve is a root"
+        )));
+    }
+    if degenerate::has_common_factor(f, g) {
+        return Err(Error::Degenerate(
+            "f and g share a common factor: the system has a curve of roots".into(),
+        ));
+    }
+    let enclose = |q: &num_rational::BigRational| Interval::from_rational(q);
+    match domain {
+        Domain::Triangle => {
+            let n = f.total_degree().max(1).max(g.total_degree()) as usize;
+            let (tf, tg) = (f.to_triangle(n).map(enclose), g.to_triangle(n).map(enclose));
+            solve_triangle(&tf, &tg, opts)
+        }
+        Domain::Square => {
+            let (sf, sg) = (f.to_square().map(enclose), g.to_square().map(enclose));
+            solve_square(&sf, &sg, opts)
+        }
+    }
+}
+
+fn check_options(opts: &SolveOptions) -> Result<()> {
+    if !(opts.eps.is_finite() && opts.eps > 0.0) {
+        return Err(Error::Shape(format!(
+            "eps must be a positive finite number, got {}",
+            opts.eps
+        )));
+    }
+    Ok(())
+}
+
+fn check_system(f: &TriBezier<Interval>, g: &TriBezier<Interval>) -> Result<()> {
+    for (name, p) in [("f", f), ("g", g)] {
+        if p.coeffs().iter().any(|c| !c.is_finite()) {
+            return Err(Error::NonFinite(format!("a coefficient of {name} is NaN or infinite")));
+        }
+        if p.is_zero() {
+            return Err(Error::Degenerate(format!("equation {name} is identically zero")));
+        }
+    }
+    Ok(())
+}
+
+/// Solves `f = g = 0` on the unit triangle, `f`, `g` in BB form there (any
+/// degrees; interval coefficients are enclosures of the intended system).
+/// See [`Solution`] for the contract. Common factors are not detected here
+/// (use [`solve`] for exact input); a curve of roots then ends in clusters or
+/// a budget, never in a wrong "no roots".
+pub fn solve_triangle(f: &TriBezier<Interval>, g: &TriBezier<Interval>, opts: &SolveOptions) -> Result<Solution> {
+    check_options(opts)?;
+    check_system(f, g)?;
+    let n = f.degree().max(g.degree());
+    let (f, g) = (f.elevate_cached(n), g.elevate_cached(n));
+    let global = System::new(f.clone(), g.clone());
+    Ok(solve_pieces(
+        &[(f, g, Frame::Identity)],
+        &global,
+        Domain::Triangle,
+        opts,
+    ))
+}
+
+/// Solves `f = g = 0` on the unit square, `f`, `g` in tensor BB form there,
+/// through the exact conversion to two triangles. A root on the diagonal is
+/// reported once. See [`Solution`] for the contract.
+pub fn solve_square(f: &TensorBezier<Interval>, g: &TensorBezier<Interval>, opts: &SolveOptions) -> Result<Solution> {
+    check_options(opts)?;
+    let (m, n) = f.degree();
+    let (p, q) = g.degree();
+    let (f, g) = (f.elevate(m.max(p), n.max(q))?, g.elevate(m.max(p), n.max(q))?);
+    let [fa, fb] = f.to_triangles();
+    let [ga, gb] = g.to_triangles();
+    check_system(&fa, &ga)?;
+    let global = System::new(fa.clone(), ga.clone());
+    Ok(solve_pieces(
+        &[(fa, ga, Frame::Identity), (fb, gb, Frame::Reflect)],
+        &global,
+        Domain::Square,
+        opts,
+    ))
+}
+
+#[derive(Clone)]
+struct Found {
+    bx: IBox,
+    diameters: Vec<f64>,
+}
+
+fn solve_pieces(
+    pieces: &[(TriBezier<Interval>, TriBezier<Interval>, Frame)],
+    global: &System,
+    domain: Domain,
+    opts: &SolveOptions,
+) -> Solution {
+    let limits = opts.limits();
+    let mut stats = Stats::default();
+    let mut leaves: Vec<Found> = Vec::new();
+    let mut leftovers = Vec::new();
+    for (f, g, frame) in pieces {
+        let mut probe = |tb: &tribox::TriBox| match global.certify(frame.map_box(tribox::box_of(tb))) {
+            Verdict::Unique(_) => Probe::Unique,
+            Verdict::NoRoot => Probe::NoRoot,
+            Verdict::Undecided(_) => Probe::Undecided,
+        };
+        let run = driver::run(f, g, &limits, &mut probe);
+        add_counters(&mut stats.run, &run.counters);
+        stats.krawczyk_calls += run.counters.probes;
+        stats.max_level = stats
+            .max_level
+            .max(run.nodes.iter().map(|n| n.level).max().unwrap_or(0));
+        stats.leaves += run.leaves.len();
+        for leaf in &run.leaves {
+            leaves.push(Found {
+                bx: frame.map_box(local_box(leaf)),
+                diameters: path_diameters(&run.nodes, leaf.node),
+            });
+        }
+        for leaf in &run.leftovers {
+            let bx = frame.map_box(local_box(leaf));
+            let triangle = leaf.tb.verts.map(|p| frame.map_point(p));
+            leftovers.push(Leftover {
+                bx: Box2::of(bx),
+                triangle,
+            });
+        }
+    }
+    let (roots, clusters) = certify_groups(group_overlapping(leaves), global, &mut stats);
+    let roots = merge_roots(roots, global, &mut stats);
+    let mut out_roots = Vec::new();
+    for r in roots {
+        match locate(r.bx, domain) {
+            Place::Outside => stats.outside_domain += 1,
+            place => out_roots.push(Root {
+                u: r.bx[0].mid(),
+                v: r.bx[1].mid(),
+                bx: Box2::of(r.bx),
+                certified: true,
+                on_boundary: place == Place::Boundary,
+                diameters: r.diameters,
+            }),
+        }
+    }
+    out_roots.sort_by(|a, b| a.u.total_cmp(&b.u).then(a.v.total_cmp(&b.v)));
+    let clusters = group_overlapping(clusters)
+        .into_iter()
+        .map(|group| {
+            let c = hull_of(group);
+            Cluster {
+                bx: Box2::of(c.bx),
+                reason: ClusterReason::KrawczykUndecided,
+                diameters: c.diameters,
+            }
+        })
+        .collect();
+    Solution {
+        complete: leftovers.is_empty(),
+        roots: out_roots,
+        clusters,
+        leftovers,
+        stats,
+    }
+}
+
+/// Groups of boxes connected by overlap (closed boxes; touching counts), by a
+/// sweep over `u` and union–find: `O(n log n + overlaps)`.
+fn group_overlapping(mut items: Vec<Found>) -> Vec<Vec<Found>> {
+    items.sort_by(|a, b| a.bx[0].inf().total_cmp(&b.bx[0].inf()));
+    let n = items.len();
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn find(p: &mut [usize], mut i: usize) -> usize {
+        while p[i] != i {
+            p[i] = p[p[i]];
+            i = p[i];
+        }
+        i
+    }
+    for i in 0..n {
+        for j in i + 1..n {
+            if items[j].bx[0].inf() > items[i].bx[0].sup() {
+                break;
+            }
+            if overlaps(items[i].bx, items[j].bx) {
+                let (a, b) = (find(&mut parent, i), find(&mut parent, j));
+                parent[a] = b;
+            }
+        }
+    }
+    let mut groups: Vec<Vec<Found>> = Vec::new();
+    let mut slot = vec![usize::MAX; n];
+    for (i, item) in items.into_iter().enumerate() {
+        let r = find(&mut parent, i);
+        if slot[r] == usize::MAX {
+            slot[r] = groups.len();
+            groups.push(Vec::new());
+        }
+        groups[slot[r]].push(item);
+    }
+    groups
+}
+
+fn hull_of(group: Vec<Found>) -> Found {
+    let mut it = group.into_iter();
+    let first = it.next().expect("groups are non-empty");
+    it.fold(first, |acc, x| Found {
+        bx: hull(acc.bx, x.bx),
+        diameters: if x.diameters.len() > acc.diameters.len() {
+            x.diameters
+        } else {
+            acc.diameters
+        },
+    })
+}
+
+/// Largest group whose leaves are certified one by one when their hull fails.
+const SMALL_GROUP: usize = 16;
+
+/// Certifies each group of touching leaves through its hull (a root on a
+/// shared edge is then found once); a small group whose hull fails is tried
+/// leaf by leaf (two roots closer than a few tri-boxes), a large one becomes
+/// an undecided cluster.
+fn certify_groups(groups: Vec<Vec<Found>>, global: &System, stats: &mut Stats) -> (Vec<Found>, Vec<Found>) {
+    let (mut roots, mut clusters) = (Vec::new(), Vec::new());
+    for group in groups {
+        let len = group.len();
+        let whole = hull_of(group.clone());
+        stats.krawczyk_calls += 1;
+        match global.certify(whole.bx) {
+            Verdict::Unique(k) => roots.push(Found {
+                bx: k,
+                diameters: whole.diameters,
+            }),
+            Verdict::NoRoot => stats.krawczyk_exclusions += len,
+            Verdict::Undecided(_) if len > 1 && len <= SMALL_GROUP => {
+                for leaf in group {
+                    stats.krawczyk_calls += 1;
+                    match global.certify(leaf.bx) {
+                        Verdict::Unique(k) => roots.push(Found {
+                            bx: k,
+                            diameters: leaf.diameters,
+                        }),
+                        Verdict::NoRoot => stats.krawczyk_exclusions += 1,
+                        Verdict::Undecided(_) => clusters.push(leaf),
+                    }
+                }
+            }
+            Verdict::Undecided(_) => clusters.push(whole),
+        }
+    }
+    (roots, clusters)
+}
+
+fn add_counters(a: &mut Counters, b: &Counters) {
+    a.boxes += b.boxes;
+    a.clips += b.clips;
+    a.splits += b.splits;
+    a.sign_exclusions += b.sign_exclusions;
+    a.clip_exclusions += b.clip_exclusions;
+    a.probes += b.probes;
+    a.probe_exclusions += b.probe_exclusions;
+}
+
+fn local_box<S>(leaf: &Leaf<S>) -> IBox {
+    let [s, t] = leaf.tb.bbox();
+    [interval(s[0], s[1]), interval(t[0], t[1])]
+}
+
+fn overlaps(a: IBox, b: IBox) -> bool {
+    !a[0].disjoint(b[0]) && !a[1].disjoint(b[1])
+}
+
+fn hull(a: IBox, b: IBox) -> IBox {
+    [a[0].convex_hull(b[0]), a[1].convex_hull(b[1])]
+}
+
+/// Certified boxes that overlap may hold the same root (a root on a shared
+/// tri-box edge). If Krawczyk proves a unique root in their hull, they are one
+/// root; otherwise (rare) both stay, since each holds exactly one root but
+/// they might be different.
+fn merge_roots(mut found: Vec<Found>, global: &System, stats: &mut Stats) -> Vec<Found> {
+    let mut out: Vec<Found> = Vec::new();
+    'next: while let Some(r) = found.pop() {
+        for o in out.iter_mut() {
+            if overlaps(o.bx, r.bx) {
+                stats.krawczyk_calls += 1;
+                if let Verdict::Unique(k) = global.certify(hull(o.bx, r.bx)) {
+                    o.bx = k;
+                    if r.diameters.len() > o.diameters.len() {
+                        o.diameters = r.diameters;
+                    }
+                    continue 'next;
+                }
+            }
+        }
+        out.push(r);
+    }
+    out
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Place {
+    Inside,
+    Boundary,
+    Outside,
+}
+
+/// Where a certified box lies relative to the closed domain (proven).
+fn locate(x: IBox, domain: Domain) -> Place {
+    let (u, v) = (x[0], x[1]);
+    match domain {
+        Domain::Triangle => {
+            let sum = u + v;
+            if u.sup() < 0.0 || v.sup() < 0.0 || sum.inf() > 1.0 {
+                Place::Outside
+            } else if u.inf() > 0.0 && v.inf() > 0.0 && sum.sup() < 1.0 {
+                Place::Inside
+            } else {
+                Place::Boundary
+            }
+        }
+        Domain::Square => {
+            if u.sup() < 0.0 || v.sup() < 0.0 || u.inf() > 1.0 || v.inf() > 1.0 {
+                Place::Outside
+            } else if u.inf() > 0.0 && v.inf() > 0.0 && u.sup() < 1.0 && v.sup() < 1.0 {
+                Place::Inside
+            } else {
+                Place::Boundary
+            }
+        }
+    }
+}
+
+/// The same clipping iteration in plain `f64`, without any proof: returns the
+/// centres of the final tri-boxes (on the unit triangle). For measuring the
+/// cost of rigor and as a fast heuristic; never a certificate.
+pub fn solve_triangle_f64(f: &TriBezier<f64>, g: &TriBezier<f64>, opts: &SolveOptions) -> Vec<[f64; 2]> {
+    let limits = Limits {
+        probe_below: 0.0,
+        ..opts.limits()
+    };
+    let n = f.degree().max(g.degree());
+    let run = driver::run(&f.elevate_cached(n), &g.elevate_cached(n), &limits, &mut |_| {
+        Probe::Undecided
+    });
+    run.leaves.iter().map(|l| l.tb.point_at([1.0 / 3.0; 3])).collect()
+}

@@ -1,0 +1,240 @@
+//! Tri-boxes: triangular sub-domains with exact `f64` vertices, and the two
+//! ways the driver replaces one — a clip and a 1-to-4 split — each *verified*
+//! to cover what it replaces.
+//!
+//! Vertices are points in the root triangle's local Cartesian coordinates
+//! `(s, t)` (barycentric `(s, t, 1 − s − t)`). A vertex is an exact `f64`, and
+//! the polynomial on a tri-box is an enclosure for exactly that triangle, so the
+//! reported regions are the ones the proofs are about.
+//!
+//! Rounding: a clip is computed in the parent's barycentric coordinates and
+//! its corners are enclosed in intervals; the proposed `f64` triangle is pushed
+//! outward a few ulps and accepted only once interval orientation tests prove it
+//! contains all three enclosed corners. A split's midpoints are nudged outward
+//! until each is proven on or outside its edge, so the four children cover the
+//! parent.
+
+use crate::scalar::{interval, point};
+use inari::Interval;
+
+/// A point `(s, t)`.
+pub type Pt = [f64; 2];
+
+/// A tri-box: vertices `V1, V2, V3` (counter-clockwise) and its recursion level.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TriBox {
+    /// `V1` (local `u = 1`), `V2` (`v = 1`), `V3` (`w = 1`).
+    pub verts: [Pt; 3],
+}
+
+fn sub(a: Pt, b: Pt) -> Pt {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+fn norm(a: Pt) -> f64 {
+    a[0].hypot(a[1])
+}
+
+/// `orient(a, b, c)`: twice the signed area, enclosed in an interval.
+pub fn orient(a: [Interval; 2], b: [Interval; 2], c: [Interval; 2]) -> Interval {
+    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+}
+
+fn ipt(p: Pt) -> [Interval; 2] {
+    [point(p[0]), point(p[1])]
+}
+
+impl TriBox {
+    /// The root triangle `(1, 0), (0, 1), (0, 0)`.
+    pub fn unit() -> Self {
+        Self {
+            verts: [[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]],
+        }
+    }
+
+    /// The longest edge.
+    pub fn diam(&self) -> f64 {
+        let [a, b, c] = self.verts;
+        norm(sub(a, b)).max(norm(sub(b, c))).max(norm(sub(c, a)))
+    }
+
+    /// Barycentric coordinates of the vertices w.r.t. the root triangle, as
+    /// intervals (exact `s`, `t`; `1 − s − t` enclosed).
+    pub fn bary_intervals(&self) -> [[Interval; 3]; 3] {
+        self.verts.map(|[s, t]| {
+            let (si, ti) = (point(s), point(t));
+            [si, ti, point(1.0) - si - ti]
+        })
+    }
+
+    /// The incenter, in the tri-box's own barycentric coordinates: side
+    /// lengths opposite each vertex, normalized. Falls back to the centroid for
+    /// a collapsed triangle.
+    pub fn incenter_bary(&self) -> [f64; 3] {
+        let [a, b, c] = self.verts;
+        let (la, lb, lc) = (norm(sub(b, c)), norm(sub(c, a)), norm(sub(a, b)));
+        let sum = la + lb + lc;
+        if sum > 0.0 && sum.is_finite() {
+            [la / sum, lb / sum, lc / sum]
+        } else {
+            [1.0 / 3.0; 3]
+        }
+    }
+
+    /// The point with barycentric coordinates `b` (f64, not rigorous).
+    pub fn point_at(&self, b: [f64; 3]) -> Pt {
+        let [p, q, r] = self.verts;
+        [
+            b[0] * p[0] + b[1] * q[0] + b[2] * r[0],
+            b[0] * p[1] + b[1] * q[1] + b[2] * r[1],
+        ]
+    }
+
+    /// The axis-aligned bounding box `([s_lo, s_hi], [t_lo, t_hi])` (exact).
+    pub fn bbox(&self) -> [[f64; 2]; 2] {
+        let s = self.verts.map(|p| p[0]);
+        let t = self.verts.map(|p| p[1]);
+        let lo_hi = |x: [f64; 3]| [x[0].min(x[1]).min(x[2]), x[0].max(x[1]).max(x[2])];
+        [lo_hi(s), lo_hi(t)]
+    }
+
+    /// Provably counter-clockwise with positive area.
+    pub fn is_proper(&self) -> bool {
+        let [a, b, c] = self.verts.map(ipt);
+        orient(a, b, c).inf() > 0.0
+    }
+
+    /// The triangle `{u ≥ mins[0], v ≥ mins[1], w ≥ mins[2]}` (local
+    /// barycentric; `mins ≥ 0`, `Σ mins < 1`), as a new tri-box with `f64`
+    /// vertices proven to contain it. `None` if no such triangle could be
+    /// verified (the caller then keeps `self`).
+    pub fn clip(&self, mins: [f64; 3]) -> Option<TriBox> {
+        let [a, b, c] = mins.map(point);
+        let one = point(1.0);
+        let corners_bary = [[one - b - c, b, c], [a, one - a - c, c], [a, b, one - a - b]];
+        let verts = self.verts.map(ipt);
+        let corners: Vec<[Interval; 2]> = corners_bary
+            .iter()
+            .map(|w| {
+                let s = w[0] * verts[0][0] + w[1] * verts[1][0] + w[2] * verts[2][0];
+                let t = w[0] * verts[0][1] + w[1] * verts[1][1] + w[2] * verts[2][1];
+                [s, t]
+            })
+            .collect();
+        let mids: [Pt; 3] = [0, 1, 2].map(|i| [corners[i][0].mid(), corners[i][1].mid()]);
+        let diam = TriBox { verts: mids }.diam();
+        let mut eta = diam * f64::powi(2.0, -30) + f64::powi(2.0, -52);
+        for _ in 0..4 {
+            let cand = TriBox {
+                verts: expand(mids, eta),
+            };
+            if cand.is_proper() && corners.iter().all(|k| cand.contains_enclosure(*k)) {
+                return Some(cand);
+            }
+            eta *= 16.0;
+        }
+        None
+    }
+
+    /// Every point of the box `k` lies in the closed triangle (proven).
+    fn contains_enclosure(&self, k: [Interval; 2]) -> bool {
+        let [a, b, c] = self.verts.map(ipt);
+        orient(a, b, k).inf() >= 0.0 && orient(b, c, k).inf() >= 0.0 && orient(c, a, k).inf() >= 0.0
+    }
+
+    /// The four children of the 1-to-4 split, in the order corner `V1`, corner
+    /// `V2`, corner `V3`, middle `(M23, M13, M12)` — the same order and
+    /// orientation as [`TriBezier::split4`](crate::poly::TriBezier::split4).
+    /// Midpoints are nudged outward until proven on or outside their edge, so
+    /// the children cover `self`. `None` if that fails (a collapsed tri-box).
+    pub fn split4(&self) -> Option<[TriBox; 4]> {
+        let [p1, p2, p3] = self.verts;
+        let m12 = outward_midpoint(p1, p2)?;
+        let m23 = outward_midpoint(p2, p3)?;
+        let m13 = outward_midpoint(p3, p1)?;
+        let kids = [
+            TriBox { verts: [p1, m12, m13] },
+            TriBox { verts: [m12, p2, m23] },
+            TriBox { verts: [m13, m23, p3] },
+            TriBox { verts: [m23, m13, m12] },
+        ];
+        kids.iter().all(TriBox::is_proper).then_some(kids)
+    }
+}
+
+/// Moves each vertex `eta` further from the centroid.
+fn expand(v: [Pt; 3], eta: f64) -> [Pt; 3] {
+    let c = [(v[0][0] + v[1][0] + v[2][0]) / 3.0, (v[0][1] + v[1][1] + v[2][1]) / 3.0];
+    v.map(|p| {
+        let d = sub(p, c);
+        let n = norm(d);
+        if n > 0.0 {
+            [p[0] + d[0] / n * eta, p[1] + d[1] / n * eta]
+        } else {
+            p
+        }
+    })
+}
+
+/// The midpoint of edge `a → b` of a counter-clockwise triangle, nudged along
+/// the outward normal until `orient(a, b, m) ≤ 0` is proven (on or outside
+/// the edge).
+fn outward_midpoint(a: Pt, b: Pt) -> Option<Pt> {
+    let mut m = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+    let d = sub(b, a);
+    let len = norm(d);
+    if len == 0.0 || !len.is_finite() {
+        return None;
+    }
+    let outward = [d[1] / len, -d[0] / len];
+    let mut step = f64::EPSILON * (m[0].abs().max(m[1].abs()).max(f64::MIN_POSITIVE));
+    for _ in 0..8 {
+        if orient(ipt(a), ipt(b), ipt(m)).sup() <= 0.0 {
+            return Some(m);
+        }
+        m = [m[0] + outward[0] * step, m[1] + outward[1] * step];
+        step *= 4.0;
+    }
+    None
+}
+
+/// The box `[lo, hi]²` enclosing a tri-box, for Krawczyk.
+pub fn box_of(tb: &TriBox) -> [Interval; 2] {
+    let [s, t] = tb.bbox();
+    [interval(s[0], s[1]), interval(t[0], t[1])]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn clip_contains_corners_and_shrinks() {
+        let tb = TriBox::unit();
+        let c = tb.clip([0.1, 0.2, 0.3]).unwrap();
+        assert!(c.diam() < tb.diam() * 0.41 && c.diam() > tb.diam() * 0.39);
+    }
+
+    #[test]
+    fn split_children_cover() {
+        let tb = TriBox {
+            verts: [[0.7, 0.1], [0.1, 0.7], [0.1, 0.1]],
+        };
+        let kids = tb.split4().unwrap();
+        let area = |t: &TriBox| {
+            let [a, b, c] = t.verts;
+            0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+        };
+        let total: f64 = kids.iter().map(area).sum();
+        assert!((total - area(&tb)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn tiny_clip_still_verifies() {
+        let tb = TriBox {
+            verts: [[0.5 + 1e-14, 0.125], [0.5, 0.125 + 1e-14], [0.5, 0.125]],
+        };
+        let c = tb.clip([0.3, 0.3, 0.3]).unwrap();
+        assert!(c.diam() < 1e-14);
+    }
+}
