@@ -212,15 +212,27 @@ impl Polynomial {
     }
 
     /// The monomial form of a BB polynomial on the unit triangle (the inverse
-    /// of [`Self::to_triangle`]).
+    /// of [`Self::to_triangle`]), for any degree.
+    ///
+    /// Expands `C(n; i,j,k) u^i v^j w^k` with
+    /// `w^k = Σ_{p+q≤k} (−1)^{p+q} C(k; p,q,k−p−q) u^p v^q` term by term. The
+    /// work is bounded by the input's size, so [`MAX_DEGREE`] (a guard against
+    /// runaway *parsing*) does not apply: going through [`Self::pow`] here used
+    /// to panic for degrees above it.
     pub fn from_triangle(f: &TriBezier<BigRational>) -> Self {
-        let n = f.degree();
-        let w = Self::constant(BigRational::one()).sub(&Self::u()).sub(&Self::v());
         let mut out = Self::zero();
-        for ((i, j, k), c) in tri_indices(n).zip(f.coeffs()) {
-            let basis = Self::monomial(BigRational::from_integer(multinomial(i, j, k)), i as u32, j as u32);
-            let term = basis.mul(&w.pow(k as u32).expect("bounded")).expect("bounded");
-            out = out.add(&term.scale(c));
+        for ((i, j, k), c) in tri_indices(f.degree()).zip(f.coeffs()) {
+            if c.is_zero() {
+                continue;
+            }
+            let scaled = c * BigRational::from_integer(multinomial(i, j, k));
+            for p in 0..=k {
+                for q in 0..=k - p {
+                    let t = &scaled * BigRational::from_integer(multinomial(p, q, k - p - q));
+                    let t = if (p + q) % 2 == 1 { -t } else { t };
+                    out.add_term(((i + p) as u32, (j + q) as u32), t);
+                }
+            }
         }
         out
     }
@@ -242,7 +254,7 @@ impl fmt::Display for Polynomial {
             return write!(f, "0");
         }
         let mut keys: Vec<_> = self.terms.keys().copied().collect();
-        keys.sort_by(|x, y| (y.0 + y.1, y.0).cmp(&(x.0 + x.1, x.0)));
+        keys.sort_by_key(|k| std::cmp::Reverse((k.0 + k.1, k.0)));
         for (pos, key) in keys.iter().enumerate() {
             let c = &self.terms[key];
             let sign = if c.is_negative() { "-" } else { "+" };

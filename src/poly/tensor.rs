@@ -8,7 +8,7 @@
 
 use super::l2::{self, binomial, multinomial};
 use super::triangle::{mat_vec, max_abs_diff, tri_index, tri_len, TriBezier};
-use super::univariate::{split_coeffs, UniBezier};
+use super::univariate::{deriv_coeffs, eval_coeffs, split_coeffs, UniBezier};
 use crate::error::{Error, Result};
 use crate::scalar::{MatrixKey, Scalar, Sign};
 use num_rational::BigRational;
@@ -112,12 +112,6 @@ impl<S: Scalar> TensorBezier<S> {
         }
     }
 
-    fn row(&self, i: usize) -> UniBezier<S> {
-        let start = i * (self.n + 1);
-        UniBezier::new(self.coeffs[start..start + self.n + 1].to_vec(), self.v_domain.clone())
-            .expect("rows of a valid tensor are valid")
-    }
-
     /// Value at `(u, v)` by de Casteljau in `v` along each row, then in `u`.
     ///
     /// ```
@@ -127,8 +121,17 @@ impl<S: Scalar> TensorBezier<S> {
     /// assert!((f.eval(0.5, 0.25) - 0.125).abs() < 1e-15);
     /// ```
     pub fn eval(&self, u: S, v: S) -> S {
-        let column: Vec<S> = (0..=self.m).map(|i| self.row(i).eval(v.clone())).collect();
-        UniBezier::new(column, self.u_domain.clone()).expect("valid").eval(u)
+        // Straight on the coefficient rows: a tensor made by `map` may carry a
+        // domain that no longer passes `UniBezier::new` (e.g. collapsed by
+        // rounding), and evaluation must not panic on it.
+        let local = |x: S, [a, b]: &[S; 2]| (x - a.clone()) / (b.clone() - a.clone());
+        let t = local(v, &self.v_domain);
+        let column: Vec<S> = self
+            .coeffs
+            .chunks(self.n + 1)
+            .map(|row| eval_coeffs(row, t.clone()))
+            .collect();
+        eval_coeffs(&column, local(u, &self.u_domain))
     }
 
     /// The two pieces either side of `at` (a domain coordinate in `direction`).
@@ -229,16 +232,7 @@ impl<S: Scalar> TensorBezier<S> {
             Direction::U => &self.u_domain,
             Direction::V => &self.v_domain,
         };
-        let derived: Vec<Vec<S>> = lines
-            .into_iter()
-            .map(|l| {
-                UniBezier::new(l, side.clone())
-                    .expect("valid")
-                    .deriv()
-                    .coeffs()
-                    .to_vec()
-            })
-            .collect();
+        let derived: Vec<Vec<S>> = lines.iter().map(|l| deriv_coeffs(l, side)).collect();
         let len = derived[0].len();
         let (m, n) = match direction {
             Direction::U => (len - 1, self.n),

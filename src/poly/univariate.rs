@@ -89,14 +89,7 @@ impl<S: Scalar> UniBezier<S> {
 
     /// Value at local parameter `t`.
     pub fn eval_local(&self, t: S) -> S {
-        let mut c = self.coeffs.clone();
-        let s = S::one() - t.clone();
-        for m in (1..c.len()).rev() {
-            for i in 0..m {
-                c[i] = s.clone() * c[i].clone() + t.clone() * c[i + 1].clone();
-            }
-        }
-        c.swap_remove(0)
+        eval_coeffs(&self.coeffs, t)
     }
 
     /// The two pieces on `[a, x]` and `[x, b]`. Errors unless `a < x < b`
@@ -139,22 +132,8 @@ impl<S: Scalar> UniBezier<S> {
     /// `dp/dx`, degree `n − 1`: `n (c_{i+1} − c_i) / (b − a)` (the zero constant
     /// for `n = 0`).
     pub fn deriv(&self) -> Self {
-        let n = self.degree();
-        if n == 0 {
-            return Self {
-                coeffs: vec![S::zero()],
-                domain: self.domain.clone(),
-            };
-        }
-        let [a, b] = self.domain.clone();
-        let scale = S::from_i64(n as i64) / (b - a);
-        let coeffs = self
-            .coeffs
-            .windows(2)
-            .map(|w| scale.clone() * (w[1].clone() - w[0].clone()))
-            .collect();
         Self {
-            coeffs,
+            coeffs: deriv_coeffs(&self.coeffs, &self.domain),
             domain: self.domain.clone(),
         }
     }
@@ -175,6 +154,34 @@ impl<S: Scalar> UniBezier<S> {
         let delta = max_abs_diff(&self.coeffs, approx.elevate(n)?.coeffs());
         Ok(UniReduction { approx, delta })
     }
+}
+
+/// de Casteljau value of a non-empty coefficient row at local `t`. No domain
+/// is involved, so callers holding unvalidated rows (tensor lines after a
+/// `map`) cannot trip [`UniBezier::new`]'s checks.
+pub(crate) fn eval_coeffs<S: Scalar>(c: &[S], t: S) -> S {
+    let mut c = c.to_vec();
+    let s = S::one() - t.clone();
+    for m in (1..c.len()).rev() {
+        for i in 0..m {
+            c[i] = s.clone() * c[i].clone() + t.clone() * c[i + 1].clone();
+        }
+    }
+    c.swap_remove(0)
+}
+
+/// Coefficients of `dp/dx` for the row `c` on `[a, b]`: `n (c_{i+1} − c_i) / (b − a)`,
+/// or the zero constant when `n = 0`.
+pub(crate) fn deriv_coeffs<S: Scalar>(c: &[S], domain: &[S; 2]) -> Vec<S> {
+    let n = c.len() - 1;
+    if n == 0 {
+        return vec![S::zero()];
+    }
+    let [a, b] = domain.clone();
+    let scale = S::from_i64(n as i64) / (b - a);
+    c.windows(2)
+        .map(|w| scale.clone() * (w[1].clone() - w[0].clone()))
+        .collect()
 }
 
 /// de Casteljau split of a coefficient row at local `t`: the coefficients on
