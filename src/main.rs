@@ -53,6 +53,12 @@ impl From<MethodArg> for Method {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Recompute Tables 1–6 of Liu et al. (2016) and print them beside the paper's.
+    Tables {
+        /// Print JSON cells instead of text tables.
+        #[arg(long)]
+        json: bool,
+    },
     /// Every root of f = g = 0 in the domain, each in a certified box.
     Solve {
         /// The first equation, e.g. "u^3 - v".
@@ -127,6 +133,7 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> Result<String, Error> {
     match cli.command {
         Command::Bernstein { f, domain, json } => bernstein(&f, domain, json),
+        Command::Tables { json } => tables_cmd(json),
         Command::Solve {
             f,
             g,
@@ -315,4 +322,58 @@ fn solution_text(sol: &Solution, secs: f64) -> String {
         secs * 1e6
     );
     out
+}
+
+fn opt<T: std::fmt::Display>(x: &Option<T>) -> String {
+    x.as_ref().map_or("-".to_string(), |v| v.to_string())
+}
+
+fn tables_cmd(json: bool) -> Result<String, Error> {
+    use rootclip::repro;
+    let (rec, diam) = repro::tables()?;
+    if json {
+        let mut cells: Vec<Value> = rec
+            .iter()
+            .map(|c| json!({"example": c.example, "method": c.method.name(), "lg_eps": c.lg_eps, "recursions": c.ours, "paper": c.paper}))
+            .collect();
+        cells.extend(diam.iter().map(|c| {
+            json!({"example": c.example, "method": c.method.name(), "level": c.level, "diam": c.ours, "paper": c.paper})
+        }));
+        return Ok(json!({"source": "Liu, Cao, Chen, Zeng (2016), doi:10.1631/FITEE.1500390", "cells": cells}).to_string());
+    }
+    let mut out = String::new();
+    let titles = [("1", "Table 1"), ("2", "Table 3"), ("3k0", "Table 5, k = 0"), ("3k2", "Table 5, k = 2"), ("3k5", "Table 5, k = 5")];
+    for (ex, title) in titles {
+        out += &format!("\n{title} (Example {ex}): recursions to reach diam < eps, ours (paper)\n");
+        out += &format!("{:<10}", "method");
+        for lg in repro::LG_EPS {
+            out += &format!("{:>10}", format!("lg {lg}"));
+        }
+        out += "\n";
+        for m in Method::ALL {
+            out += &format!("{:<10}", m.name());
+            for lg in repro::LG_EPS {
+                let c = rec.iter().find(|c| c.example == ex && c.method == m && c.lg_eps == lg);
+                let cell = c.map_or("-".to_string(), |c| format!("{} ({})", opt(&c.ours), opt(&c.paper)));
+                out += &format!("{cell:>10}");
+            }
+            out += "\n";
+        }
+    }
+    let dtitles = [("1", "Table 2"), ("2", "Table 4"), ("3k0", "Table 6, k = 0"), ("3k2", "Table 6, k = 2"), ("3k5", "Table 6, k = 5")];
+    for (ex, title) in dtitles {
+        out += &format!("\n{title} (Example {ex}): diam of the tri-box holding the root, by level: ours (paper)\n");
+        out += &format!("{:<6}{:>26}{:>26}\n", "level", "hc-nopre", "hc");
+        let levels = diam.iter().filter(|c| c.example == ex).map(|c| c.level).max().unwrap_or(0);
+        for level in 1..=levels {
+            let cell = |m: Method| {
+                diam.iter().find(|c| c.example == ex && c.method == m && c.level == level).map_or("-".to_string(), |c| {
+                    let f = |x: &Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.2e}"));
+                    format!("{} ({})", f(&c.ours), f(&c.paper))
+                })
+            };
+            out += &format!("{level:<6}{:>26}{:>26}\n", cell(Method::HcNoPre), cell(Method::Hc));
+        }
+    }
+    Ok(out)
 }

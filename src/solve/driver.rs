@@ -13,6 +13,7 @@ use super::num::Num;
 use super::tribox::TriBox;
 use crate::poly::TriBezier;
 use crate::scalar::Sign;
+use num_rational::BigRational;
 
 /// Budgets and tolerances of one run.
 #[derive(Clone, Copy, Debug)]
@@ -70,7 +71,20 @@ pub struct Leaf<S> {
     pub fa: TriBezier<S>,
     /// `g` on the tri-box.
     pub fb: TriBezier<S>,
+    /// `fa`, `fb` were computed exactly (rationals, then enclosed), as are the
+    /// polynomials of every tri-box below this one.
+    pub exact: bool,
 }
+
+/// Below this diameter a stalled tri-box is recomputed from the exact input:
+/// the interval coefficients carry ~1e-16 absolute rounding from the root
+/// triangle's scale, which near a tangential intersection (small angle θ)
+/// limits clipping to ~1e-16/θ; exact coefficients enclosed afresh carry
+/// rounding relative to their own (tiny) size.
+pub const EXACT_BELOW: f64 = 1e-6;
+
+/// The exact input, when there is one (rational coefficients).
+pub type ExactPair = [TriBezier<BigRational>; 2];
 
 /// Counters of one run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -89,6 +103,8 @@ pub struct Counters {
     pub probes: usize,
     /// Tri-boxes discarded by a probe.
     pub probe_exclusions: usize,
+    /// Stalled tri-boxes recomputed from the exact input.
+    pub exact_restarts: usize,
 }
 
 /// What the loop produced.
@@ -117,6 +133,7 @@ pub fn uniform_sign<S: Num>(f: &TriBezier<S>) -> Option<Sign> {
 pub fn run<S: Num>(
     f: &TriBezier<S>,
     g: &TriBezier<S>,
+    exact: Option<&ExactPair>,
     limits: &Limits,
     probe: &mut dyn FnMut(&TriBox) -> Probe,
 ) -> Run<S> {
@@ -137,6 +154,7 @@ pub fn run<S: Num>(
         node: 0,
         fa: f.clone(),
         fb: g.clone(),
+        exact: false,
     }];
     if uniform_sign(f).is_some() || uniform_sign(g).is_some() {
         out.counters.sign_exclusions += 1;
@@ -153,7 +171,7 @@ pub fn run<S: Num>(
             continue;
         }
         out.counters.boxes += 1;
-        step(f, g, item, limits, &mut out, &mut stack, probe);
+        step(f, g, exact, item, limits, &mut out, &mut stack, probe);
     }
     out
 }
@@ -162,7 +180,7 @@ pub fn run<S: Num>(
 /// reliably any more.
 fn too_small(tb: &TriBox) -> bool {
     let scale = tb.verts.iter().flatten().fold(1.0f64, |m, x| m.max(x.abs()));
-    tb.diam() < 64.0 * f64::EPSILON * scale
+    tb.diam() < 8.0 * f64::EPSILON * scale
 }
 
 fn restrict<S: Num>(f: &TriBezier<S>, tb: &TriBox) -> TriBezier<S> {
@@ -172,9 +190,35 @@ fn restrict<S: Num>(f: &TriBezier<S>, tb: &TriBox) -> TriBezier<S> {
     f.subdivide(&verts)
 }
 
+/// The pair on `tb`: from the exact input (then enclosed) when `use_exact`,
+/// otherwise in the kernel's arithmetic.
+fn restrict_pair<S: Num>(
+    f: &TriBezier<S>,
+    g: &TriBezier<S>,
+    exact: Option<&ExactPair>,
+    use_exact: bool,
+    tb: &TriBox,
+) -> (TriBezier<S>, TriBezier<S>) {
+    match exact {
+        Some([fe, ge]) if use_exact => {
+            let q = |x: f64| BigRational::from_float(x).expect("vertices are finite");
+            let verts = tb.verts.map(|[s, t]| {
+                let (s, t) = (q(s), q(t));
+                let w = BigRational::from_integer(1.into()) - &s - &t;
+                [s, t, w]
+            });
+            let enclose = |p: &TriBezier<BigRational>| p.subdivide(&verts).map(S::from_rational);
+            (enclose(fe), enclose(ge))
+        }
+        _ => (restrict(f, tb), restrict(g, tb)),
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
 fn step<S: Num>(
     f: &TriBezier<S>,
     g: &TriBezier<S>,
+    exact: Option<&ExactPair>,
     item: Leaf<S>,
     limits: &Limits,
     out: &mut Run<S>,
@@ -198,7 +242,7 @@ fn step<S: Num>(
     let (tb, fa, fb) = match clipped {
         Some(tb) if tb.diam() < diam => {
             out.counters.clips += 1;
-            let (fa, fb) = (restrict(f, &tb), restrict(g, &tb));
+            let (fa, fb) = restrict_pair(f, g, exact, item.exact, &tb);
             (tb, fa, fb)
         }
         _ => (item.tb, item.fa, item.fb),
@@ -210,7 +254,15 @@ fn step<S: Num>(
     let new_diam = tb.diam();
     if new_diam <= 0.5 * diam {
         let node = push_node(out, item.node, level, new_diam);
-        stack.push(Leaf { tb, node, fa, fb });
+        stack.push(Leaf { tb, node, fa, fb, exact: item.exact });
+        return;
+    }
+    if exact.is_some() && !item.exact && new_diam < EXACT_BELOW && S::KERNEL.is_rigorous() {
+        // Stalled at the rounding floor: redo this tri-box from the exact input.
+        out.counters.exact_restarts += 1;
+        let (fa, fb) = restrict_pair(f, g, exact, true, &tb);
+        let node = push_node(out, item.node, level, new_diam);
+        stack.push(Leaf { tb, node, fa, fb, exact: true });
         return;
     }
     if new_diam < limits.probe_below {
@@ -222,12 +274,12 @@ fn step<S: Num>(
             }
             Probe::Unique => {
                 let node = push_node(out, item.node, level, new_diam);
-                out.leaves.push(Leaf { tb, node, fa, fb });
+                out.leaves.push(Leaf { tb, node, fa, fb, exact: item.exact });
                 return;
             }
             Probe::Undecided if new_diam < SINGULAR_FLOOR => {
                 let node = push_node(out, item.node, level, new_diam);
-                out.leaves.push(Leaf { tb, node, fa, fb });
+                out.leaves.push(Leaf { tb, node, fa, fb, exact: item.exact });
                 return;
             }
             Probe::Undecided => {}
@@ -236,13 +288,13 @@ fn step<S: Num>(
     let Some(kids) = tb.split4() else {
         // Collapsed at the rounding floor: hand it to the certification phase.
         let node = push_node(out, item.node, level, new_diam);
-        out.leaves.push(Leaf { tb, node, fa, fb });
+        out.leaves.push(Leaf { tb, node, fa, fb, exact: item.exact });
         return;
     };
     out.counters.splits += 1;
     // Push in reverse so the corner at V1 is processed first.
     for kid in kids.into_iter().rev() {
-        let (ka, kb) = (restrict(f, &kid), restrict(g, &kid));
+        let (ka, kb) = restrict_pair(f, g, exact, item.exact, &kid);
         if uniform_sign(&ka).is_some() || uniform_sign(&kb).is_some() {
             out.counters.sign_exclusions += 1;
             continue;
@@ -253,6 +305,7 @@ fn step<S: Num>(
             node,
             fa: ka,
             fb: kb,
+            exact: item.exact,
         });
     }
 }

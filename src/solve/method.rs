@@ -116,6 +116,58 @@ pub fn preprocess<S: Num>(fa: &TriBezier<S>, fb: &TriBezier<S>, c: [f64; 3]) -> 
     Some(ell.mul(&delta).add(fb))
 }
 
+/// The generalised preprocessing used when Eq. (8)'s `A` is singular:
+/// `f̂ = ℓ f^α + m f^β` with two linear multipliers `ℓ = 1 + ℓ1 (u − u_c) + ℓ2 (v − v_c)`
+/// and `m = m0 + m1 (u − u_c) + m2 (v − v_c)` whose Hessian vanishes at `c`:
+/// ```text
+/// f_uu + m0 g_uu + 2ℓ1 f_u + 2m1 g_u                 = 0
+/// f_uv + m0 g_uv + ℓ1 f_v + ℓ2 f_u + m1 g_v + m2 g_u = 0
+/// f_vv + m0 g_vv + 2ℓ2 f_v + 2m2 g_v                 = 0
+/// ```
+/// solved for the minimum-norm `(m0, ℓ1, ℓ2, m1, m2)`. Three equations, five
+/// unknowns: solvable whenever `∇f` and `∇g` are transversal at `c` — exactly
+/// the simple-root case. The paper's form is the special case `m = 1 − ℓ`,
+/// which is singular for all of Examples 1 and 2 (there `f − g` is linear,
+/// respectively a function of `u` alone). Rigor is as for [`preprocess`]:
+/// every root of `{f^α, f^β}` is a root of `{f̂, f^β}`.
+pub fn preprocess_general<S: Num>(fa: &TriBezier<S>, fb: &TriBezier<S>, c: [f64; 3]) -> Option<TriBezier<S>> {
+    let (a64, b64) = (fa.map(|x| x.to_f64()), fb.map(|x| x.to_f64()));
+    let grad_hess = |p: &TriBezier<f64>| {
+        let (pu, pv) = (p.deriv_u(), p.deriv_v());
+        let h = [pu.deriv_u().eval_bary(&c), pu.deriv_v().eval_bary(&c), pv.deriv_v().eval_bary(&c)];
+        ([pu.eval_bary(&c), pv.eval_bary(&c)], h)
+    };
+    let ((fg, fh), (gg, gh)) = (grad_hess(&a64), grad_hess(&b64));
+    // Columns of M for x = (m0, ℓ1, ℓ2, m1, m2).
+    let cols = [
+        [gh[0], gh[1], gh[2]],
+        [2.0 * fg[0], fg[1], 0.0],
+        [0.0, fg[0], 2.0 * fg[1]],
+        [2.0 * gg[0], gg[1], 0.0],
+        [0.0, gg[0], 2.0 * gg[1]],
+    ];
+    let mut mmt = [[0.0; 3]; 3];
+    for (r, row) in mmt.iter_mut().enumerate() {
+        for (k, x) in row.iter_mut().enumerate() {
+            *x = cols.iter().map(|col| col[r] * col[k]).sum();
+        }
+    }
+    let y = solve3(mmt, [-fh[0], -fh[1], -fh[2]])?;
+    let x: Vec<f64> = cols.iter().map(|col| col[0] * y[0] + col[1] * y[1] + col[2] * y[2]).collect();
+    if x.iter().any(|v| !v.is_finite() || v.abs() > 1e8) {
+        return None;
+    }
+    let (cs, ct) = (c[0], c[1]);
+    // A linear polynomial a + b1 (s − cs) + b2 (t − ct) in BB form: values at V3, V1, V2.
+    let linear = |a: f64, b1: f64, b2: f64| {
+        let at = |s: f64, t: f64| S::pt(a + b1 * (s - cs) + b2 * (t - ct));
+        TriBezier::new(1, vec![at(0.0, 0.0), at(1.0, 0.0), at(0.0, 1.0)]).ok()
+    };
+    let ell = linear(1.0, x[1], x[2])?;
+    let m = linear(x[0], x[3], x[4])?;
+    Some(ell.mul(fa).add(&m.mul(fb)))
+}
+
 /// Gaussian elimination with partial pivoting; `None` when a pivot is tiny
 /// relative to its row (numerically singular).
 fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
@@ -146,6 +198,22 @@ fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
     Some(x)
 }
 
+/// The width `2δ / |∇l|` of a fat line's strip in local coordinates (∞ for
+/// a constant `l`).
+fn strip_width<S: Num>(fat: &Fat<S>) -> f64 {
+    match fat {
+        Fat::Line(l, d) => {
+            let g = l.c[1].to_f64().hypot(l.c[2].to_f64());
+            if g > 0.0 {
+                2.0 * d / g
+            } else {
+                f64::INFINITY
+            }
+        }
+        Fat::Conic(..) => f64::INFINITY,
+    }
+}
+
 /// One clipping computation on a tri-box (local coordinates): the bounds
 /// `u_min, v_min, w_min` for `method`, or `Empty` when the fat regions (or
 /// hulls) prove the tri-box root-free. `incenter` is the tri-box incenter in
@@ -156,8 +224,16 @@ pub fn clip_bounds<S: Num>(method: Method, fa: &TriBezier<S>, fb: &TriBezier<S>,
         Method::Linear => clip_against_fat_curves(&[fat_curve(fa, 1), fat_curve(fb, 1)]),
         Method::HcNoPre => clip_against_fat_curves(&[fat_curve(fa, 1), fat_curve(fb, 2)]),
         Method::Hc => {
-            let fhat = preprocess(fa, fb, incenter);
-            let line = fat_curve(fhat.as_ref().unwrap_or(fa), 1);
+            let plain = fat_curve(fa, 1);
+            let fhat = preprocess(fa, fb, incenter).or_else(|| preprocess_general(fa, fb, incenter));
+            // The preprocessed line wins asymptotically (δ = O(h³)), but on large
+            // tri-boxes, or at the rounding floor where the local Hessians are
+            // noise, f̂ can be worse than f^α: keep the narrower strip. Both are
+            // rigorous, so the choice affects speed only.
+            let line = match fhat.map(|p| fat_curve(&p, 1)) {
+                Some(pre) if strip_width(&pre) < strip_width(&plain) => pre,
+                _ => plain,
+            };
             clip_against_fat_curves(&[line, fat_curve(fb, 2)])
         }
     }

@@ -24,7 +24,8 @@ pub mod tribox;
 use crate::error::{Error, Result};
 use crate::poly::{Polynomial, TensorBezier, TriBezier};
 use crate::scalar::{interval, point, Scalar};
-use driver::{path_diameters, Counters, Leaf, Limits, Probe};
+use driver::{path_diameters, Counters, ExactPair, Leaf, Limits, Probe};
+use num_rational::BigRational;
 use inari::Interval;
 use krawczyk::{IBox, System, Verdict};
 pub use method::Method;
@@ -280,13 +281,22 @@ pub fn solve(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions
     let enclose = |q: &num_rational::BigRational| Interval::from_rational(q);
     match domain {
         Domain::Triangle => {
+            check_options(opts)?;
             let n = f.total_degree().max(1).max(g.total_degree()) as usize;
-            let (tf, tg) = (f.to_triangle(n).map(enclose), g.to_triangle(n).map(enclose));
-            solve_triangle(&tf, &tg, opts)
+            let (ef, eg) = (f.to_triangle(n), g.to_triangle(n));
+            let (tf, tg) = (ef.map(enclose), eg.map(enclose));
+            check_system(&tf, &tg)?;
+            let global = System::new(tf.clone(), tg.clone());
+            let piece = Piece { f: tf, g: tg, frame: Frame::Identity, exact: Some([ef, eg]) };
+            Ok(solve_pieces(vec![piece], &global, Domain::Triangle, opts))
         }
         Domain::Square => {
-            let (sf, sg) = (f.to_square().map(enclose), g.to_square().map(enclose));
-            solve_square(&sf, &sg, opts)
+            check_options(opts)?;
+            let ((m, n), (p, q)) = (f.degrees(), g.degrees());
+            let (dm, dn) = (m.max(p) as usize, n.max(q) as usize);
+            let (ef, eg) = (f.to_square().elevate(dm, dn)?, g.to_square().elevate(dm, dn)?);
+            let exact = Some((ef.to_triangles(), eg.to_triangles()));
+            square_pieces(&ef.map(enclose), &eg.map(enclose), exact, opts)
         }
     }
 }
@@ -324,12 +334,27 @@ pub fn solve_triangle(f: &TriBezier<Interval>, g: &TriBezier<Interval>, opts: &S
     let n = f.degree().max(g.degree());
     let (f, g) = (f.elevate_cached(n), g.elevate_cached(n));
     let global = System::new(f.clone(), g.clone());
-    Ok(solve_pieces(
-        &[(f, g, Frame::Identity)],
-        &global,
-        Domain::Triangle,
-        opts,
-    ))
+    let exact = match (points_exact(&f), points_exact(&g)) {
+        (Some(a), Some(b)) => Some([a, b]),
+        _ => None,
+    };
+    Ok(solve_pieces(vec![Piece { f, g, frame: Frame::Identity, exact }], &global, Domain::Triangle, opts))
+}
+
+/// The exact polynomial of a point-interval input (its coefficients are
+/// exactly those floats), or `None` if any coefficient is a proper interval.
+fn points_exact(p: &TriBezier<Interval>) -> Option<TriBezier<BigRational>> {
+    let coeffs: Option<Vec<BigRational>> =
+        p.coeffs().iter().map(|c| if c.inf() == c.sup() { BigRational::from_float(c.inf()) } else { None }).collect();
+    TriBezier::new(p.degree(), coeffs?).ok()
+}
+
+/// One root triangle: the system on it, its frame, and the exact system when known.
+struct Piece {
+    f: TriBezier<Interval>,
+    g: TriBezier<Interval>,
+    frame: Frame,
+    exact: Option<ExactPair>,
 }
 
 /// Solves `f = g = 0` on the unit square, `f`, `g` in tensor BB form there,
@@ -340,16 +365,30 @@ pub fn solve_square(f: &TensorBezier<Interval>, g: &TensorBezier<Interval>, opts
     let (m, n) = f.degree();
     let (p, q) = g.degree();
     let (f, g) = (f.elevate(m.max(p), n.max(q))?, g.elevate(m.max(p), n.max(q))?);
+    square_pieces(&f, &g, None, opts)
+}
+
+type ExactHalves = ([TriBezier<BigRational>; 2], [TriBezier<BigRational>; 2]);
+
+fn square_pieces(
+    f: &TensorBezier<Interval>,
+    g: &TensorBezier<Interval>,
+    exact: Option<ExactHalves>,
+    opts: &SolveOptions,
+) -> Result<Solution> {
     let [fa, fb] = f.to_triangles();
     let [ga, gb] = g.to_triangles();
     check_system(&fa, &ga)?;
     let global = System::new(fa.clone(), ga.clone());
-    Ok(solve_pieces(
-        &[(fa, ga, Frame::Identity), (fb, gb, Frame::Reflect)],
-        &global,
-        Domain::Square,
-        opts,
-    ))
+    let (ea, eb) = match exact {
+        Some(([fea, feb], [gea, geb])) => (Some([fea, gea]), Some([feb, geb])),
+        None => (None, None),
+    };
+    let pieces = vec![
+        Piece { f: fa, g: ga, frame: Frame::Identity, exact: ea },
+        Piece { f: fb, g: gb, frame: Frame::Reflect, exact: eb },
+    ];
+    Ok(solve_pieces(pieces, &global, Domain::Square, opts))
 }
 
 #[derive(Clone)]
@@ -359,7 +398,7 @@ struct Found {
 }
 
 fn solve_pieces(
-    pieces: &[(TriBezier<Interval>, TriBezier<Interval>, Frame)],
+    pieces: Vec<Piece>,
     global: &System,
     domain: Domain,
     opts: &SolveOptions,
@@ -368,13 +407,13 @@ fn solve_pieces(
     let mut stats = Stats::default();
     let mut leaves: Vec<Found> = Vec::new();
     let mut leftovers = Vec::new();
-    for (f, g, frame) in pieces {
+    for Piece { f, g, frame, exact } in &pieces {
         let mut probe = |tb: &tribox::TriBox| match global.certify(frame.map_box(tribox::box_of(tb))) {
             Verdict::Unique(_) => Probe::Unique,
             Verdict::NoRoot => Probe::NoRoot,
             Verdict::Undecided(_) => Probe::Undecided,
         };
-        let run = driver::run(f, g, &limits, &mut probe);
+        let run = driver::run(f, g, exact.as_ref(), &limits, &mut probe);
         add_counters(&mut stats.run, &run.counters);
         stats.krawczyk_calls += run.counters.probes;
         stats.max_level = stats
@@ -529,6 +568,7 @@ fn add_counters(a: &mut Counters, b: &Counters) {
     a.clip_exclusions += b.clip_exclusions;
     a.probes += b.probes;
     a.probe_exclusions += b.probe_exclusions;
+    a.exact_restarts += b.exact_restarts;
 }
 
 fn local_box<S>(leaf: &Leaf<S>) -> IBox {
@@ -610,7 +650,7 @@ pub fn solve_triangle_f64(f: &TriBezier<f64>, g: &TriBezier<f64>, opts: &SolveOp
         ..opts.limits()
     };
     let n = f.degree().max(g.degree());
-    let run = driver::run(&f.elevate_cached(n), &g.elevate_cached(n), &limits, &mut |_| {
+    let run = driver::run(&f.elevate_cached(n), &g.elevate_cached(n), None, &limits, &mut |_| {
         Probe::Undecided
     });
     run.leaves.iter().map(|l| l.tb.point_at([1.0 / 3.0; 3])).collect()

@@ -58,6 +58,18 @@ impl TriBox {
         norm(sub(a, b)).max(norm(sub(b, c))).max(norm(sub(c, a)))
     }
 
+    /// The inradius `2·area / perimeter` (f64, for step sizes only).
+    pub fn inradius(&self) -> f64 {
+        let [a, b, c] = self.verts;
+        let area2 = ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])).abs();
+        let per = norm(sub(a, b)) + norm(sub(b, c)) + norm(sub(c, a));
+        if per > 0.0 {
+            area2 / per
+        } else {
+            0.0
+        }
+    }
+
     /// Barycentric coordinates of the vertices w.r.t. the root triangle, as
     /// intervals (exact `s`, `t`; `1 − s − t` enclosed).
     pub fn bary_intervals(&self) -> [[Interval; 3]; 3] {
@@ -121,17 +133,36 @@ impl TriBox {
                 [s, t]
             })
             .collect();
-        let mids: [Pt; 3] = [0, 1, 2].map(|i| [corners[i][0].mid(), corners[i][1].mid()]);
-        let diam = TriBox { verts: mids }.diam();
-        let mut eta = diam * f64::powi(2.0, -30) + f64::powi(2.0, -52);
-        for _ in 0..4 {
-            let cand = TriBox {
-                verts: expand(mids, eta),
-            };
+        // K is homothetic to this tri-box with ratio ρ = 1 − Σ mins. Propose
+        // c_K + λ (V_i − c_T) with λ a little above ρ: each edge then moves out by
+        // (λ − ρ)·r (r the inradius), which must cover the corners' uncertainty.
+        // Unlike pushing K's own corners apart, this works even when K is below
+        // float resolution (its corners round to one point).
+        let rho = 1.0 - (mins[0] + mins[1] + mins[2]);
+        let centre = |pts: &[[f64; 2]]| {
+            let n = pts.len() as f64;
+            [pts.iter().map(|p| p[0]).sum::<f64>() / n, pts.iter().map(|p| p[1]).sum::<f64>() / n]
+        };
+        let ck = centre(&corners.iter().map(|k| [k[0].mid(), k[1].mid()]).collect::<Vec<_>>());
+        let ct = centre(&self.verts);
+        let r = self.inradius();
+        if !(r > 0.0) {
+            return None;
+        }
+        let spread = corners.iter().flatten().map(|c| c.wid()).fold(0.0, f64::max);
+        let ulp = f64::EPSILON * ck[0].abs().max(ck[1].abs()).max(f64::MIN_POSITIVE);
+        let mut extra = 2.0 * (spread + 2.0 * ulp) / r + rho * f64::powi(2.0, -40);
+        for _ in 0..40 {
+            let lambda = rho + extra;
+            if lambda >= 1.0 {
+                return None;
+            }
+            let verts = self.verts.map(|v| [ck[0] + lambda * (v[0] - ct[0]), ck[1] + lambda * (v[1] - ct[1])]);
+            let cand = TriBox { verts };
             if cand.is_proper() && corners.iter().all(|k| cand.contains_enclosure(*k)) {
                 return Some(cand);
             }
-            eta *= 16.0;
+            extra *= 2.0;
         }
         None
     }
@@ -160,20 +191,6 @@ impl TriBox {
         ];
         kids.iter().all(TriBox::is_proper).then_some(kids)
     }
-}
-
-/// Moves each vertex `eta` further from the centroid.
-fn expand(v: [Pt; 3], eta: f64) -> [Pt; 3] {
-    let c = [(v[0][0] + v[1][0] + v[2][0]) / 3.0, (v[0][1] + v[1][1] + v[2][1]) / 3.0];
-    v.map(|p| {
-        let d = sub(p, c);
-        let n = norm(d);
-        if n > 0.0 {
-            [p[0] + d[0] / n * eta, p[1] + d[1] / n * eta]
-        } else {
-            p
-        }
-    })
 }
 
 /// The midpoint of edge `a → b` of a counter-clockwise triangle, nudged along

@@ -1,0 +1,184 @@
+//! Reproduction of Tables 1–6 of Liu, Cao, Chen and Zeng (2016).
+//!
+//! The paper's systems and numbers are read from
+//! `papers/hybrid-clipping-2016/paper_tables.json` (embedded at compile
+//! time); ours are recomputed by running the certified solver with the
+//! paper's Algorithm 1 unchanged (no Krawczyk probes, `ε = 1e-14`) and reading
+//! the recursion tree:
+//! * level `i` is the tri-box holding a root after `i` steps (a step is one
+//!   call of Algorithm 1: a clip, followed by a 1-to-4 split when the clip did
+//!   not halve the diameter); its diameter is its longest edge;
+//! * `recursions(ε)` is the first level whose diameter is `< ε`, maximum over
+//!   the roots — so Table 1's counts follow from Table 2's diameters.
+
+use crate::error::{Error, Result};
+use crate::solve::{solve, Domain, Method, SolveOptions, Solution};
+use crate::{parse_polynomial, Polynomial};
+use serde_json::Value;
+
+/// The paper's data file.
+pub const PAPER_TABLES: &str = include_str!("../papers/hybrid-clipping-2016/paper_tables.json");
+
+/// The examples in table order.
+pub const EXAMPLES: [&str; 5] = ["1", "2", "3k0", "3k2", "3k5"];
+
+/// `lg ε` columns of Tables 1, 3 and 5.
+pub const LG_EPS: [i32; 7] = [-2, -4, -6, -8, -10, -12, -14];
+
+/// One example system.
+#[derive(Clone, Debug)]
+pub struct Example {
+    /// `"1"`, `"2"`, `"3k0"`, `"3k2"` or `"3k5"`.
+    pub name: String,
+    /// First equation.
+    pub f: Polynomial,
+    /// Second equation.
+    pub g: Polynomial,
+    /// The root whose diameters Tables 2/4/6 list (approximately).
+    pub tracked_root: [f64; 2],
+}
+
+/// A recursion-count cell.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RecursionCell {
+    /// Example name.
+    pub example: String,
+    /// Method.
+    pub method: Method,
+    /// `lg ε`.
+    pub lg_eps: i32,
+    /// Ours (`None`: not reached).
+    pub ours: Option<usize>,
+    /// The paper's (`None` where the paper has no cell).
+    pub paper: Option<usize>,
+}
+
+/// A diameter cell.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DiameterCell {
+    /// Example name.
+    pub example: String,
+    /// Method.
+    pub method: Method,
+    /// Level (1-based).
+    pub level: usize,
+    /// Ours (`None`: the run stopped before this level).
+    pub ours: Option<f64>,
+    /// The paper's.
+    pub paper: Option<f64>,
+}
+
+fn data() -> Result<Value> {
+    serde_json::from_str(PAPER_TABLES).map_err(|e| Error::Shape(format!("paper_tables.json: {e}")))
+}
+
+/// The example systems, parsed from the data file.
+pub fn examples() -> Result<Vec<Example>> {
+    let d = data()?;
+    EXAMPLES
+        .iter()
+        .map(|&name| {
+            let e = &d["examples"][name];
+            let text = |k: &str| e[k].as_str().ok_or_else(|| Error::Shape(format!("example {name}: no {k}")));
+            let tracked = match name {
+                "1" => [0.5, 0.125],
+                "2" => [0.125, 0.25],
+                _ => {
+                    let r = &e["roots_approx"][0];
+                    [r[0].as_f64().unwrap_or(0.0), r[1].as_f64().unwrap_or(0.0)]
+                }
+            };
+            Ok(Example {
+                name: name.to_string(),
+                f: parse_polynomial(text("f")?)?,
+                g: parse_polynomial(text("g")?)?,
+                tracked_root: tracked,
+            })
+        })
+        .collect()
+}
+
+/// Options of a table run: the paper's algorithm, down to `ε = 1e-14`.
+pub fn table_options(method: Method, eps: f64) -> SolveOptions {
+    SolveOptions { method, eps, probe: false, ..SolveOptions::default() }
+}
+
+/// Solves one example with one method for the tables.
+pub fn run(example: &Example, method: Method, eps: f64) -> Result<Solution> {
+    solve(&example.f, &example.g, Domain::Triangle, &table_options(method, eps))
+}
+
+fn paper_recursions(d: &Value, example: &str, method: Method, lg: i32) -> Option<usize> {
+    d["recursions"].as_array()?.iter().find_map(|c| {
+        (c["example"] == example && c["method"] == method.name() && c["lg_eps"] == lg)
+            .then(|| c["recursions"].as_u64().map(|x| x as usize))
+            .flatten()
+    })
+}
+
+fn paper_diameter(d: &Value, example: &str, method: Method, level: usize) -> Option<f64> {
+    d["diameters"].as_array()?.iter().find_map(|c| {
+        (c["example"] == example && c["method"] == method.name() && c["level"] == level as u64)
+            .then(|| c["diam"].as_f64())
+            .flatten()
+    })
+}
+
+/// The diameters by level of the root nearest `target` (level 0 first).
+pub fn tracked_diameters(sol: &Solution, target: [f64; 2]) -> Vec<f64> {
+    let dist = |u: f64, v: f64| (u - target[0]).hypot(v - target[1]);
+    let roots = sol.roots.iter().map(|r| (dist(r.u, r.v), &r.diameters));
+    let clusters = sol.clusters.iter().map(|c| (dist(0.5 * (c.bx.u[0] + c.bx.u[1]), 0.5 * (c.bx.v[0] + c.bx.v[1])), &c.diameters));
+    roots.chain(clusters).min_by(|a, b| a.0.total_cmp(&b.0)).map(|x| x.1.clone()).unwrap_or_default()
+}
+
+/// All cells of Tables 1–6: recursion counts for every example × method ×
+/// `lg ε`, and diameters by level for `hc-nopre` and `hc`.
+pub fn tables() -> Result<(Vec<RecursionCell>, Vec<DiameterCell>)> {
+    let d = data()?;
+    let mut rec = Vec::new();
+    let mut diam = Vec::new();
+    for ex in examples()? {
+        for method in Method::ALL {
+            let sol = run(&ex, method, 1e-14)?;
+            for lg in LG_EPS {
+                rec.push(RecursionCell {
+                    example: ex.name.clone(),
+                    method,
+                    lg_eps: lg,
+                    ours: sol.recursions(10f64.powi(lg)),
+                    paper: paper_recursions(&d, &ex.name, method, lg),
+                });
+            }
+            if matches!(method, Method::Hc | Method::HcNoPre) {
+                let ours = tracked_diameters(&sol, ex.tracked_root);
+                let levels = (1..ours.len()).chain(1..=12).max().unwrap_or(0);
+                for level in 1..=levels {
+                    let paper = paper_diameter(&d, &ex.name, method, level);
+                    let mine = ours.get(level).copied();
+                    if paper.is_some() || mine.is_some() {
+                        diam.push(DiameterCell { example: ex.name.clone(), method, level, ours: mine, paper });
+                    }
+                }
+            }
+        }
+    }
+    Ok((rec, diam))
+}
+
+/// The measured convergence order from a diameter sequence: the median of
+/// `log(d_{i+1}/d_i) / log(d_i/d_{i−1})` over steps where the diameters are
+/// still above `1e-15` (past that, rounding dominates).
+pub fn convergence_order(diams: &[f64]) -> Option<f64> {
+    let d: Vec<f64> = diams.iter().copied().take_while(|&x| x > 1e-15).collect();
+    let mut orders: Vec<f64> = d
+        .windows(3)
+        .filter(|w| w[1] < w[0] && w[2] < w[1] && w[1] < 0.2)
+        .map(|w| (w[2] / w[1]).ln() / (w[1] / w[0]).ln())
+        .collect();
+    if orders.is_empty() {
+        return None;
+    }
+    orders.sort_by(f64::total_cmp);
+    Some(orders[orders.len() / 2])
+}
