@@ -51,6 +51,14 @@ impl From<MethodArg> for Method {
     }
 }
 
+#[derive(Clone, Copy, ValueEnum)]
+enum SplitArg {
+    /// Split when a clip does not halve the diameter.
+    Halving,
+    /// Split when u_min + v_min + w_min <= 0.5 diam(D), as printed in the paper.
+    Paper,
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Recompute Tables 1–6 of Liu et al. (2016) and print them beside the paper's.
@@ -58,6 +66,10 @@ enum Command {
         /// Print JSON cells instead of text tables.
         #[arg(long)]
         json: bool,
+        /// The split test: "halving" (split when a clip does not halve the
+        /// diameter; default) or "paper" (Algorithm 1 line 7 as printed).
+        #[arg(long, value_enum, default_value = "halving")]
+        split: SplitArg,
     },
     /// Every root of f = g = 0 in the domain, each in a certified box.
     Solve {
@@ -133,7 +145,7 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> Result<String, Error> {
     match cli.command {
         Command::Bernstein { f, domain, json } => bernstein(&f, domain, json),
-        Command::Tables { json } => tables_cmd(json),
+        Command::Tables { json, split } => tables_cmd(json, split),
         Command::Solve {
             f,
             g,
@@ -328,9 +340,13 @@ fn opt<T: std::fmt::Display>(x: &Option<T>) -> String {
     x.as_ref().map_or("-".to_string(), |v| v.to_string())
 }
 
-fn tables_cmd(json: bool) -> Result<String, Error> {
+fn tables_cmd(json: bool, split: SplitArg) -> Result<String, Error> {
     use rootclip::repro;
-    let (rec, diam) = repro::tables()?;
+    let rule = match split {
+        SplitArg::Halving => solve::SplitRule::Halving,
+        SplitArg::Paper => solve::SplitRule::PaperLiteral,
+    };
+    let (rec, diam) = repro::tables(rule)?;
     if json {
         let mut cells: Vec<Value> = rec
             .iter()

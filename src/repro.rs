@@ -12,7 +12,7 @@
 //!   the roots — so Table 1's counts follow from Table 2's diameters.
 
 use crate::error::{Error, Result};
-use crate::solve::{solve, Domain, Method, SolveOptions, Solution};
+use crate::solve::{solve, Domain, Method, SolveOptions, Solution, SplitRule};
 use crate::{parse_polynomial, Polynomial};
 use serde_json::Value;
 
@@ -98,14 +98,15 @@ pub fn examples() -> Result<Vec<Example>> {
         .collect()
 }
 
-/// Options of a table run: the paper's algorithm, down to `ε = 1e-14`.
-pub fn table_options(method: Method, eps: f64) -> SolveOptions {
-    SolveOptions { method, eps, probe: false, ..SolveOptions::default() }
+/// Options of a table run: the paper's algorithm (no Krawczyk probes), down
+/// to `eps`, with the given split test.
+pub fn table_options(method: Method, eps: f64, split: SplitRule) -> SolveOptions {
+    SolveOptions { method, eps, probe: false, split, ..SolveOptions::default() }
 }
 
 /// Solves one example with one method for the tables.
-pub fn run(example: &Example, method: Method, eps: f64) -> Result<Solution> {
-    solve(&example.f, &example.g, Domain::Triangle, &table_options(method, eps))
+pub fn run(example: &Example, method: Method, eps: f64, split: SplitRule) -> Result<Solution> {
+    solve(&example.f, &example.g, Domain::Triangle, &table_options(method, eps, split))
 }
 
 fn paper_recursions(d: &Value, example: &str, method: Method, lg: i32) -> Option<usize> {
@@ -133,14 +134,15 @@ pub fn tracked_diameters(sol: &Solution, target: [f64; 2]) -> Vec<f64> {
 }
 
 /// All cells of Tables 1–6: recursion counts for every example × method ×
-/// `lg ε`, and diameters by level for `hc-nopre` and `hc`.
-pub fn tables() -> Result<(Vec<RecursionCell>, Vec<DiameterCell>)> {
+/// `lg ε`, and diameters by level for `hc-nopre` and `hc`, with the given
+/// split test.
+pub fn tables(split: SplitRule) -> Result<(Vec<RecursionCell>, Vec<DiameterCell>)> {
     let d = data()?;
     let mut rec = Vec::new();
     let mut diam = Vec::new();
     for ex in examples()? {
         for method in Method::ALL {
-            let sol = run(&ex, method, 1e-14)?;
+            let sol = run(&ex, method, 1e-14, split)?;
             for lg in LG_EPS {
                 rec.push(RecursionCell {
                     example: ex.name.clone(),

@@ -30,6 +30,22 @@ pub struct Limits {
     /// the `probe` callback of [`run`]; `0` disables probing (the paper's
     /// algorithm, used for the tables).
     pub probe_below: f64,
+    /// The split test.
+    pub split: SplitRule,
+}
+
+/// When a step splits the clipped tri-box 1-to-4 (Algorithm 1, line 7).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum SplitRule {
+    /// Split when the clip did not halve the diameter (default; the reading
+    /// of §2.3.5's prose, "larger than half of the size of D").
+    #[default]
+    Halving,
+    /// Split when `u_min + v_min + w_min ≤ 0.5·diam(D)`, Algorithm 1 line 7 as
+    /// printed. It mixes a barycentric sum with a length, so on small
+    /// tri-boxes it almost never splits; it reproduces the paper's Bézier and
+    /// linear counts closely (see papers/hybrid-clipping-2016).
+    PaperLiteral,
 }
 
 /// What a probe (Krawczyk on a stalled tri-box) proved.
@@ -252,7 +268,11 @@ fn step<S: Num>(
         return;
     }
     let new_diam = tb.diam();
-    if new_diam <= 0.5 * diam {
+    let progressed = match limits.split {
+        SplitRule::Halving => new_diam <= 0.5 * diam,
+        SplitRule::PaperLiteral => mins.iter().sum::<f64>() > 0.5 * diam && new_diam < diam,
+    };
+    if progressed {
         let node = push_node(out, item.node, level, new_diam);
         stack.push(Leaf { tb, node, fa, fb, exact: item.exact });
         return;

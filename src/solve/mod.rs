@@ -25,6 +25,7 @@ use crate::error::{Error, Result};
 use crate::poly::{Polynomial, TensorBezier, TriBezier};
 use crate::scalar::{interval, point, Scalar};
 use driver::{path_diameters, Counters, ExactPair, Leaf, Limits, Probe};
+pub use driver::SplitRule;
 use num_rational::BigRational;
 use inari::Interval;
 use krawczyk::{IBox, System, Verdict};
@@ -56,6 +57,8 @@ pub struct SolveOptions {
     /// refining undecided ones below `1e-9` (multiple roots). Default `true`;
     /// `false` runs the paper's Algorithm 1 unchanged (used by the tables).
     pub probe: bool,
+    /// When a step splits 1-to-4 (default [`SplitRule::Halving`]).
+    pub split: SplitRule,
 }
 
 impl Default for SolveOptions {
@@ -64,9 +67,7 @@ impl Default for SolveOptions {
             method: Method::Hc,
             eps: 1e-12,
             max_boxes: 200_000,
-            max_depth: 400,
-            probe: true,
-        }
+            max_depth: 400, probe: true, split: SplitRule::Halving }
     }
 }
 
@@ -78,6 +79,7 @@ impl SolveOptions {
             max_boxes: self.max_boxes,
             max_depth: self.max_depth,
             probe_below: if self.probe { 1e-3 } else { 0.0 },
+            split: self.split,
         }
     }
 }
