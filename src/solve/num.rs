@@ -69,7 +69,9 @@ impl Num for f64 {
         [q.is_finite().then_some(q), None]
     }
     fn clamp_to(self, lo: f64, hi: f64) -> Option<Self> {
-        (lo <= self && self <= hi).then_some(self)
+        // No enclosure to intersect: accept values a rounding error outside.
+        let tol = 1e-12 * (hi - lo).abs().max(1.0);
+        (lo - tol <= self && self <= hi + tol).then(|| self.clamp(lo, hi))
     }
     fn nonzero(self) -> bool {
         self != 0.0
