@@ -99,6 +99,20 @@ pub struct Leaf<S> {
 /// rounding relative to their own (tiny) size.
 pub const EXACT_BELOW: f64 = 1e-6;
 
+/// Coefficient enclosures wider than `1e-4` of the largest coefficient: the
+/// rounding inherited from the root triangle's scale starts to dominate.
+fn noisy<S: Num>(p: &TriBezier<S>) -> bool {
+    if !S::KERNEL.is_rigorous() {
+        return false;
+    }
+    let (mut width, mut size) = (0.0f64, 0.0f64);
+    for c in p.coeffs() {
+        width = width.max(c.upper() - c.lower());
+        size = size.max(c.mag());
+    }
+    width > 1e-4 * size
+}
+
 /// The exact input, when there is one (rational coefficients).
 pub type ExactPair = [TriBezier<BigRational>; 2];
 
@@ -235,7 +249,7 @@ fn step<S: Num>(
     f: &TriBezier<S>,
     g: &TriBezier<S>,
     exact: Option<&ExactPair>,
-    item: Leaf<S>,
+    mut item: Leaf<S>,
     limits: &Limits,
     out: &mut Run<S>,
     stack: &mut Vec<Leaf<S>>,
@@ -243,6 +257,13 @@ fn step<S: Num>(
 ) {
     let level = out.nodes[item.node].level + 1;
     let diam = item.tb.diam();
+    if exact.is_some() && !item.exact && diam < EXACT_BELOW && (noisy(&item.fa) || noisy(&item.fb)) {
+        // The enclosures are wide relative to the values: recompute exactly
+        // before the clip is spoiled by rounding (same tri-box, same level).
+        out.counters.exact_restarts += 1;
+        let (fa, fb) = restrict_pair(f, g, exact, true, &item.tb);
+        item = Leaf { fa, fb, exact: true, ..item };
+    }
     let mins = match clip_bounds(limits.method, &item.fa, &item.fb, item.tb.incenter_bary()) {
         ClipBounds::Empty => {
             out.counters.clip_exclusions += 1;
