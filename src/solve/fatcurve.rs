@@ -337,6 +337,11 @@ fn line_conic<S: Num>(l: &Linear<S>, q: &Quadratic<S>) -> Vec<[S; 2]> {
             c[0] + c[1] * k + c[3] * k * k,
         )
     };
+    if [alpha, beta, gamma].iter().all(|c| c.sign_class() == Sign::Zero) {
+        // The line lies in the level curve: minimizers on it are the end
+        // points of that boundary piece, found through the other pairs.
+        return Vec::new();
+    }
     let mut out = Vec::new();
     for x in quadratic_roots_in_unit(alpha, beta, gamma) {
         if let Some(y) = (m * x + k).clamp_to(0.0, 1.0) {

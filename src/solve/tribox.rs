@@ -150,9 +150,13 @@ impl TriBox {
             return None;
         }
         let spread = corners.iter().flatten().map(|c| c.wid()).fold(0.0, f64::max);
-        let ulp = f64::EPSILON * ck[0].abs().max(ck[1].abs()).max(f64::MIN_POSITIVE);
+        // Rounding scale: coordinates near the tri-box, never below the
+        // tri-box's own size (a clip to a point at the origin still needs a
+        // triangle of representable, provable size around it).
+        let scale = ck[0].abs().max(ck[1].abs()).max(ct[0].abs()).max(ct[1].abs()).max(self.diam());
+        let ulp = f64::EPSILON * scale;
         let mut extra = 2.0 * (spread + 2.0 * ulp) / r + rho * f64::powi(2.0, -40);
-        for _ in 0..40 {
+        for _ in 0..60 {
             let lambda = rho + extra;
             if lambda >= 1.0 {
                 return None;
