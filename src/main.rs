@@ -117,6 +117,10 @@ fn main() -> ExitCode {
             let _ = e.print();
             return ExitCode::SUCCESS;
         }
+        Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            eprintln!("rootclip: missing subcommand (bernstein, solve, tables); see rootclip --help");
+            return ExitCode::from(2);
+        }
         Err(e) => {
             // One line: clap's message up to its usage block, joined.
             let text = e.to_string();
@@ -176,6 +180,7 @@ fn fraction(q: &BigRational) -> String {
 
 fn bernstein(expr: &str, domain: Domain, json: bool) -> Result<String, Error> {
     let poly = parse_polynomial(expr)?;
+    poly.check_conversion_cost(matches!(domain, Domain::Square))?;
     let (header, degree, rows): (&str, Value, Vec<(Value, String)>) = match domain {
         Domain::Triangle => {
             let t = poly.to_triangle(0);

@@ -22,6 +22,14 @@ use std::fmt;
 /// rejected with [`Error::TooLarge`] instead of running away.
 pub const MAX_DEGREE: u32 = 200;
 
+/// Most term-by-term products one multiplication may take (a bivariate
+/// polynomial of total degree 60 has 1891 terms; `1891²` fits): bounds the
+/// parser's work on inputs such as `(u+v+1)^100*(u+v+1)^100`.
+pub const MAX_PRODUCT_TERMS: usize = 4_000_000;
+
+/// Most rational products an exact BB conversion may take (about a second).
+pub const MAX_CONVERSION_WORK: usize = 4_000_000;
+
 /// An exact polynomial `Σ c_ab u^a v^b` with rational coefficients. Zero
 /// coefficients are never stored, so equality is equality of polynomials.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -137,6 +145,14 @@ impl Polynomial {
                 "total degree {deg} exceeds the limit {MAX_DEGREE}"
             )));
         }
+        let products = self.terms.len().saturating_mul(other.terms.len());
+        if products > MAX_PRODUCT_TERMS {
+            return Err(Error::TooLarge(format!(
+                "a product of {} by {} terms ({products} rational products) exceeds the limit {MAX_PRODUCT_TERMS}",
+                self.terms.len(),
+                other.terms.len()
+            )));
+        }
         let mut out = Self::zero();
         for ((a1, b1), c1) in &self.terms {
             for ((a2, b2), c2) in &other.terms {
@@ -174,6 +190,34 @@ impl Polynomial {
         self.terms.iter().fold(BigRational::zero(), |acc, ((a, b), c)| {
             acc + c * num_traits::pow(u.clone(), *a as usize) * num_traits::pow(v.clone(), *b as usize)
         })
+    }
+
+    /// Rational products the exact conversion to the unit triangle costs
+    /// (`terms × coefficients`).
+    pub fn triangle_cost(&self) -> usize {
+        let n = self.total_degree() as usize;
+        self.terms.len().saturating_mul((n + 1) * (n + 2) / 2)
+    }
+
+    /// Rational products the exact conversion to the unit square costs.
+    pub fn square_cost(&self) -> usize {
+        let (m, n) = self.degrees();
+        self.terms.len().saturating_mul((m as usize + 1) * (n as usize + 1))
+    }
+
+    /// Errors with [`Error::TooLarge`] when an exact conversion would take more
+    /// than [`MAX_CONVERSION_WORK`] rational products (seconds of work), so
+    /// that callers fail fast on inputs like `(u+v+1)^100`.
+    pub fn check_conversion_cost(&self, square: bool) -> Result<()> {
+        let cost = if square { self.square_cost() } else { self.triangle_cost() };
+        if cost > MAX_CONVERSION_WORK {
+            return Err(Error::TooLarge(format!(
+                "exact conversion of a polynomial with {} terms of degree {} needs {cost} rational products (limit {MAX_CONVERSION_WORK})",
+                self.terms.len(),
+                self.total_degree()
+            )));
+        }
+        Ok(())
     }
 
     /// Exact BB form on the unit triangle of degree `max(total degree, min_degree)`.

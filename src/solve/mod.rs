@@ -275,6 +275,9 @@ pub fn solve(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions
             "equation {which} is identically zero: every point of the other curve is a root"
         )));
     }
+    for p in [f, g] {
+        p.check_conversion_cost(domain == Domain::Square)?;
+    }
     if degenerate::has_common_factor(f, g) {
         return Err(Error::Degenerate(
             "f and g share a common factor: the system has a curve of roots".into(),
