@@ -410,10 +410,15 @@ fn solve_pieces(
 ) -> Solution {
     let limits = opts.limits();
     let mut stats = Stats::default();
-    let mut leaves: Vec<Found> = Vec::new();
+    let (mut roots, mut clusters) = (Vec::new(), Vec::new());
     let mut leftovers = Vec::new();
     for Piece { f, g, frame, exact } in &pieces {
-        let mut probe = |tb: &tribox::TriBox| match global.certify(frame.map_box(tribox::box_of(tb))) {
+        // Certify in the piece's own frame: its polynomials are evaluated by
+        // interpolation there. (The square's other half would extrapolate with
+        // barycentric weights up to ~2.3 in size, amplifying rounding by
+        // ~2.3^degree and defeating Krawczyk on tiny boxes.)
+        let local = System::new(f.clone(), g.clone());
+        let mut probe = |tb: &tribox::TriBox| match local.certify(tribox::box_of(tb)) {
             Verdict::Unique(_) => Probe::Unique,
             Verdict::NoRoot => Probe::NoRoot,
             Verdict::Undecided(_) => Probe::Undecided,
@@ -421,26 +426,25 @@ fn solve_pieces(
         let run = driver::run(f, g, exact.as_ref(), &limits, &mut probe);
         add_counters(&mut stats.run, &run.counters);
         stats.krawczyk_calls += run.counters.probes;
-        stats.max_level = stats
-            .max_level
-            .max(run.nodes.iter().map(|n| n.level).max().unwrap_or(0));
+        stats.max_level = stats.max_level.max(run.nodes.iter().map(|n| n.level).max().unwrap_or(0));
         stats.leaves += run.leaves.len();
-        for leaf in &run.leaves {
-            leaves.push(Found {
-                bx: frame.map_box(local_box(leaf)),
-                diameters: path_diameters(&run.nodes, leaf.node),
-            });
-        }
+        let leaves: Vec<Found> = run
+            .leaves
+            .iter()
+            .map(|leaf| Found { bx: local_box(leaf), diameters: path_diameters(&run.nodes, leaf.node) })
+            .collect();
+        let (r, c) = certify_groups(group_overlapping(leaves), &local, &mut stats);
+        let to_global = |x: Found| Found { bx: frame.map_box(x.bx), diameters: x.diameters };
+        roots.extend(merge_roots(r, &local, &mut stats).into_iter().map(to_global));
+        clusters.extend(c.into_iter().map(to_global));
         for leaf in &run.leftovers {
             let bx = frame.map_box(local_box(leaf));
             let triangle = leaf.tb.verts.map(|p| frame.map_point(p));
-            leftovers.push(Leftover {
-                bx: Box2::of(bx),
-                triangle,
-            });
+            leftovers.push(Leftover { bx: Box2::of(bx), triangle });
         }
     }
-    let (roots, clusters) = certify_groups(group_overlapping(leaves), global, &mut stats);
+    // Across pieces (the square's diagonal), in the global frame: there the
+    // first half's polynomials are evaluated next to their own triangle.
     let roots = merge_roots(roots, global, &mut stats);
     let mut out_roots = Vec::new();
     for r in roots {
