@@ -7,6 +7,7 @@ use rootclip::poly::tri_indices;
 use rootclip::solve::{self, Method, Solution, SolveOptions};
 use rootclip::{parse_polynomial, Error};
 use serde_json::{json, Value};
+use std::io::Write;
 use std::process::ExitCode;
 
 #[derive(Parser)]
@@ -136,7 +137,8 @@ fn main() -> ExitCode {
     };
     match run(cli) {
         Ok(out) => {
-            println!("{out}");
+            // A closed pipe (`rootclip ... | head`) is not an error worth a panic.
+            let _ = writeln!(std::io::stdout(), "{out}");
             ExitCode::SUCCESS
         }
         Err(e) => {

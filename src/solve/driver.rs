@@ -113,6 +113,10 @@ fn noisy<S: Num>(p: &TriBezier<S>) -> bool {
     width > 1e-4 * size
 }
 
+/// With probing on, a tri-box that a clip brought below this diameter is
+/// offered to Krawczyk right away.
+pub const EARLY_CERTIFY: f64 = 1e-2;
+
 /// The exact input, when there is one (rational coefficients).
 pub type ExactPair = [TriBezier<BigRational>; 2];
 
@@ -293,6 +297,23 @@ fn step<S: Num>(
         SplitRule::Halving => new_diam <= 0.5 * diam,
         SplitRule::PaperLiteral => mins.iter().sum::<f64>() > 0.5 * diam && new_diam < diam,
     };
+    if progressed && new_diam < EARLY_CERTIFY && limits.probe_below > 0.0 {
+        // A clip that converges: Krawczyk may already certify (or exclude) it;
+        // its contraction then converges quadratically without further clips.
+        out.counters.probes += 1;
+        match probe(&tb) {
+            Probe::Unique => {
+                let node = push_node(out, item.node, level, new_diam);
+                out.leaves.push(Leaf { tb, node, fa, fb, exact: item.exact });
+                return;
+            }
+            Probe::NoRoot => {
+                out.counters.probe_exclusions += 1;
+                return;
+            }
+            Probe::Undecided => {}
+        }
+    }
     if progressed {
         let node = push_node(out, item.node, level, new_diam);
         stack.push(Leaf { tb, node, fa, fb, exact: item.exact });
