@@ -4,15 +4,18 @@
 //! every Newton root inside the domain (and 1e-9 away from its boundary) must
 //! lie in a returned root or cluster box, and certified boxes must be
 //! pairwise disjoint. `fuzz_dense [count] [seed]`.
+use num_rational::BigRational;
 use rootclip::solve::{solve, Domain, SolveOptions};
 use rootclip::Polynomial;
-use num_rational::BigRational;
 use std::time::Instant;
 
 struct Lcg(u64);
 impl Lcg {
     fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         self.0 >> 33
     }
     fn int(&mut self, lo: i64, hi: i64) -> i64 {
@@ -107,7 +110,8 @@ fn main() {
         }
         for (i, a) in sol.roots.iter().enumerate() {
             for b in &sol.roots[i + 1..] {
-                if a.bx.u[0] <= b.bx.u[1] && b.bx.u[0] <= a.bx.u[1] && a.bx.v[0] <= b.bx.v[1] && b.bx.v[0] <= a.bx.v[1] {
+                if a.bx.u[0] <= b.bx.u[1] && b.bx.u[0] <= a.bx.u[1] && a.bx.v[0] <= b.bx.v[1] && b.bx.v[0] <= a.bx.v[1]
+                {
                     overlaps += 1;
                 }
             }

@@ -6,14 +6,33 @@ use rootclip::solve::{solve_triangle, Method, SolveOptions, SplitRule};
 use rootclip::{parse_polynomial, Scalar};
 fn main() {
     let arg = std::env::args().nth(1).unwrap_or_default();
-    let f = parse_polynomial("u^3 - v").unwrap().to_triangle(3).map(Interval::from_rational);
-    let g = parse_polynomial("u^3 + v - 1/4").unwrap().to_triangle(3).map(Interval::from_rational);
+    let f = parse_polynomial("u^3 - v")
+        .unwrap()
+        .to_triangle(3)
+        .map(Interval::from_rational);
+    let g = parse_polynomial("u^3 + v - 1/4")
+        .unwrap()
+        .to_triangle(3)
+        .map(Interval::from_rational);
     if arg == "stats" {
-        let limits = Limits { method: Method::Hc, eps: 1e-12, max_boxes: 100000, max_depth: 400, probe_below: 0.0, split: SplitRule::Halving };
+        let limits = Limits {
+            method: Method::Hc,
+            eps: 1e-12,
+            max_boxes: 100000,
+            max_depth: 400,
+            probe_below: 0.0,
+            split: SplitRule::Halving,
+        };
         let ri = driver::run(&f, &g, None, &limits, &mut |_| Probe::Undecided);
         let (ff, gf) = (f.map(|x| x.mid()), g.map(|x| x.mid()));
         let rf = driver::run(&ff, &gf, None, &limits, &mut |_| Probe::Undecided);
-        println!("interval: {:?} leaves {}\nf64:      {:?} leaves {}", ri.counters, ri.leaves.len(), rf.counters, rf.leaves.len());
+        println!(
+            "interval: {:?} leaves {}\nf64:      {:?} leaves {}",
+            ri.counters,
+            ri.leaves.len(),
+            rf.counters,
+            rf.leaves.len()
+        );
         let sol = solve_triangle(&f, &g, &SolveOptions::default()).unwrap();
         println!("solve_triangle stats: {:?}", sol.stats);
         return;

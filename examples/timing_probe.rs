@@ -14,15 +14,27 @@ fn main() {
     for (f, g) in [("u^3 - v", "u^3 + v - 1/4"), ("u^2+v^2-1/2", "u*v-1/8")] {
         let (f, g) = (parse_polynomial(f).unwrap(), parse_polynomial(g).unwrap());
         let nn = f.total_degree().max(g.total_degree()) as usize;
-        let (ti, gi): (TriBezier<Interval>, TriBezier<Interval>) =
-            (f.to_triangle(nn).map(Interval::from_rational), g.to_triangle(nn).map(Interval::from_rational));
+        let (ti, gi): (TriBezier<Interval>, TriBezier<Interval>) = (
+            f.to_triangle(nn).map(Interval::from_rational),
+            g.to_triangle(nn).map(Interval::from_rational),
+        );
         let (tf, gf): (TriBezier<f64>, TriBezier<f64>) = (ti.map(|x| x.mid()), gi.map(|x| x.mid()));
         for m in Method::ALL {
-            let o = SolveOptions { method: m, ..SolveOptions::default() };
-            let full = per_call(500, || drop(std::hint::black_box(solve(&f, &g, Domain::Triangle, &o).unwrap())));
-            let tri = per_call(2000, || drop(std::hint::black_box(solve_triangle(&ti, &gi, &o).unwrap())));
+            let o = SolveOptions {
+                method: m,
+                ..SolveOptions::default()
+            };
+            let full = per_call(500, || {
+                drop(std::hint::black_box(solve(&f, &g, Domain::Triangle, &o).unwrap()))
+            });
+            let tri = per_call(2000, || {
+                drop(std::hint::black_box(solve_triangle(&ti, &gi, &o).unwrap()))
+            });
             let plain = per_call(2000, || drop(std::hint::black_box(solve_triangle_f64(&tf, &gf, &o))));
-            println!("{m:>9}: solve() {full:7.1} µs  solve_triangle {tri:7.1} µs  plain f64 {plain:7.1} µs  ratio {:.2}", tri / plain);
+            println!(
+                "{m:>9}: solve() {full:7.1} µs  solve_triangle {tri:7.1} µs  plain f64 {plain:7.1} µs  ratio {:.2}",
+                tri / plain
+            );
         }
     }
 }

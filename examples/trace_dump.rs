@@ -9,7 +9,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let name = args.get(1).map_or("1", String::as_str);
     let method: Method = args.get(2).map_or("hc", String::as_str).parse()?;
-    let ex = repro::examples()?.into_iter().find(|e| e.name == name).ok_or("unknown example")?;
+    let ex = repro::examples()?
+        .into_iter()
+        .find(|e| e.name == name)
+        .ok_or("unknown example")?;
     let sol = repro::run(&ex, method, 1e-14, rootclip::solve::SplitRule::Halving)?;
     for r in &sol.roots {
         let d: Vec<String> = r.diameters.iter().map(|x| format!("{x:.2e}")).collect();

@@ -362,10 +362,18 @@ fn tables_cmd(json: bool, split: SplitArg) -> Result<String, Error> {
         cells.extend(diam.iter().map(|c| {
             json!({"example": c.example, "method": c.method.name(), "level": c.level, "diam": c.ours, "paper": c.paper})
         }));
-        return Ok(json!({"source": "Liu, Cao, Chen, Zeng (2016), doi:10.1631/FITEE.1500390", "cells": cells}).to_string());
+        return Ok(
+            json!({"source": "Liu, Cao, Chen, Zeng (2016), doi:10.1631/FITEE.1500390", "cells": cells}).to_string(),
+        );
     }
     let mut out = String::new();
-    let titles = [("1", "Table 1"), ("2", "Table 3"), ("3k0", "Table 5, k = 0"), ("3k2", "Table 5, k = 2"), ("3k5", "Table 5, k = 5")];
+    let titles = [
+        ("1", "Table 1"),
+        ("2", "Table 3"),
+        ("3k0", "Table 5, k = 0"),
+        ("3k2", "Table 5, k = 2"),
+        ("3k5", "Table 5, k = 5"),
+    ];
     for (ex, title) in titles {
         out += &format!("\n{title} (Example {ex}): recursions to reach diam < eps, ours (paper)\n");
         out += &format!("{:<10}", "method");
@@ -383,17 +391,30 @@ fn tables_cmd(json: bool, split: SplitArg) -> Result<String, Error> {
             out += "\n";
         }
     }
-    let dtitles = [("1", "Table 2"), ("2", "Table 4"), ("3k0", "Table 6, k = 0"), ("3k2", "Table 6, k = 2"), ("3k5", "Table 6, k = 5")];
+    let dtitles = [
+        ("1", "Table 2"),
+        ("2", "Table 4"),
+        ("3k0", "Table 6, k = 0"),
+        ("3k2", "Table 6, k = 2"),
+        ("3k5", "Table 6, k = 5"),
+    ];
     for (ex, title) in dtitles {
         out += &format!("\n{title} (Example {ex}): diam of the tri-box holding the root, by level: ours (paper)\n");
         out += &format!("{:<6}{:>26}{:>26}\n", "level", "hc-nopre", "hc");
-        let levels = diam.iter().filter(|c| c.example == ex).map(|c| c.level).max().unwrap_or(0);
+        let levels = diam
+            .iter()
+            .filter(|c| c.example == ex)
+            .map(|c| c.level)
+            .max()
+            .unwrap_or(0);
         for level in 1..=levels {
             let cell = |m: Method| {
-                diam.iter().find(|c| c.example == ex && c.method == m && c.level == level).map_or("-".to_string(), |c| {
-                    let f = |x: &Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.2e}"));
-                    format!("{} ({})", f(&c.ours), f(&c.paper))
-                })
+                diam.iter()
+                    .find(|c| c.example == ex && c.method == m && c.level == level)
+                    .map_or("-".to_string(), |c| {
+                        let f = |x: &Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.2e}"));
+                        format!("{} ({})", f(&c.ours), f(&c.paper))
+                    })
             };
             out += &format!("{level:<6}{:>26}{:>26}\n", cell(Method::HcNoPre), cell(Method::Hc));
         }

@@ -12,7 +12,7 @@
 //!   the roots — so Table 1's counts follow from Table 2's diameters.
 
 use crate::error::{Error, Result};
-use crate::solve::{solve, Domain, Method, SolveOptions, Solution, SplitRule};
+use crate::solve::{solve, Domain, Method, Solution, SolveOptions, SplitRule};
 use crate::{parse_polynomial, Polynomial};
 use serde_json::Value;
 
@@ -79,7 +79,10 @@ pub fn examples() -> Result<Vec<Example>> {
         .iter()
         .map(|&name| {
             let e = &d["examples"][name];
-            let text = |k: &str| e[k].as_str().ok_or_else(|| Error::Shape(format!("example {name}: no {k}")));
+            let text = |k: &str| {
+                e[k].as_str()
+                    .ok_or_else(|| Error::Shape(format!("example {name}: no {k}")))
+            };
             let tracked = match name {
                 "1" => [0.5, 0.125],
                 "2" => [0.125, 0.25],
@@ -101,12 +104,23 @@ pub fn examples() -> Result<Vec<Example>> {
 /// Options of a table run: the paper's algorithm (no Krawczyk probes), down
 /// to `eps`, with the given split test.
 pub fn table_options(method: Method, eps: f64, split: SplitRule) -> SolveOptions {
-    SolveOptions { method, eps, probe: false, split, ..SolveOptions::default() }
+    SolveOptions {
+        method,
+        eps,
+        probe: false,
+        split,
+        ..SolveOptions::default()
+    }
 }
 
 /// Solves one example with one method for the tables.
 pub fn run(example: &Example, method: Method, eps: f64, split: SplitRule) -> Result<Solution> {
-    solve(&example.f, &example.g, Domain::Triangle, &table_options(method, eps, split))
+    solve(
+        &example.f,
+        &example.g,
+        Domain::Triangle,
+        &table_options(method, eps, split),
+    )
 }
 
 fn paper_recursions(d: &Value, example: &str, method: Method, lg: i32) -> Option<usize> {
@@ -129,8 +143,17 @@ fn paper_diameter(d: &Value, example: &str, method: Method, level: usize) -> Opt
 pub fn tracked_diameters(sol: &Solution, target: [f64; 2]) -> Vec<f64> {
     let dist = |u: f64, v: f64| (u - target[0]).hypot(v - target[1]);
     let roots = sol.roots.iter().map(|r| (dist(r.u, r.v), &r.diameters));
-    let clusters = sol.clusters.iter().map(|c| (dist(0.5 * (c.bx.u[0] + c.bx.u[1]), 0.5 * (c.bx.v[0] + c.bx.v[1])), &c.diameters));
-    roots.chain(clusters).min_by(|a, b| a.0.total_cmp(&b.0)).map(|x| x.1.clone()).unwrap_or_default()
+    let clusters = sol.clusters.iter().map(|c| {
+        (
+            dist(0.5 * (c.bx.u[0] + c.bx.u[1]), 0.5 * (c.bx.v[0] + c.bx.v[1])),
+            &c.diameters,
+        )
+    });
+    roots
+        .chain(clusters)
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|x| x.1.clone())
+        .unwrap_or_default()
 }
 
 /// All cells of Tables 1–6: recursion counts for every example × method ×
@@ -159,7 +182,13 @@ pub fn tables(split: SplitRule) -> Result<(Vec<RecursionCell>, Vec<DiameterCell>
                     let paper = paper_diameter(&d, &ex.name, method, level);
                     let mine = ours.get(level).copied();
                     if paper.is_some() || mine.is_some() {
-                        diam.push(DiameterCell { example: ex.name.clone(), method, level, ours: mine, paper });
+                        diam.push(DiameterCell {
+                            example: ex.name.clone(),
+                            method,
+                            level,
+                            ours: mine,
+                            paper,
+                        });
                     }
                 }
             }

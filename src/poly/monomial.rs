@@ -209,7 +209,11 @@ impl Polynomial {
     /// than [`MAX_CONVERSION_WORK`] rational products (seconds of work), so
     /// that callers fail fast on inputs like `(u+v+1)^100`.
     pub fn check_conversion_cost(&self, square: bool) -> Result<()> {
-        let cost = if square { self.square_cost() } else { self.triangle_cost() };
+        let cost = if square {
+            self.square_cost()
+        } else {
+            self.triangle_cost()
+        };
         if cost > MAX_CONVERSION_WORK {
             return Err(Error::TooLarge(format!(
                 "exact conversion of a polynomial with {} terms of degree {} needs {cost} rational products (limit {MAX_CONVERSION_WORK})",

@@ -266,7 +266,12 @@ fn step<S: Num>(
         // before the clip is spoiled by rounding (same tri-box, same level).
         out.counters.exact_restarts += 1;
         let (fa, fb) = restrict_pair(f, g, exact, true, &item.tb);
-        item = Leaf { fa, fb, exact: true, ..item };
+        item = Leaf {
+            fa,
+            fb,
+            exact: true,
+            ..item
+        };
     }
     let mins = match clip_bounds(limits.method, &item.fa, &item.fb, item.tb.incenter_bary()) {
         ClipBounds::Empty => {
@@ -304,7 +309,13 @@ fn step<S: Num>(
         match probe(&tb) {
             Probe::Unique => {
                 let node = push_node(out, item.node, level, new_diam);
-                out.leaves.push(Leaf { tb, node, fa, fb, exact: item.exact });
+                out.leaves.push(Leaf {
+                    tb,
+                    node,
+                    fa,
+                    fb,
+                    exact: item.exact,
+                });
                 return;
             }
             Probe::NoRoot => {
@@ -316,7 +327,13 @@ fn step<S: Num>(
     }
     if progressed {
         let node = push_node(out, item.node, level, new_diam);
-        stack.push(Leaf { tb, node, fa, fb, exact: item.exact });
+        stack.push(Leaf {
+            tb,
+            node,
+            fa,
+            fb,
+            exact: item.exact,
+        });
         return;
     }
     if exact.is_some() && !item.exact && new_diam < EXACT_BELOW && S::KERNEL.is_rigorous() {
@@ -324,7 +341,13 @@ fn step<S: Num>(
         out.counters.exact_restarts += 1;
         let (fa, fb) = restrict_pair(f, g, exact, true, &tb);
         let node = push_node(out, item.node, level, new_diam);
-        stack.push(Leaf { tb, node, fa, fb, exact: true });
+        stack.push(Leaf {
+            tb,
+            node,
+            fa,
+            fb,
+            exact: true,
+        });
         return;
     }
     if new_diam < limits.probe_below {
@@ -336,12 +359,24 @@ fn step<S: Num>(
             }
             Probe::Unique => {
                 let node = push_node(out, item.node, level, new_diam);
-                out.leaves.push(Leaf { tb, node, fa, fb, exact: item.exact });
+                out.leaves.push(Leaf {
+                    tb,
+                    node,
+                    fa,
+                    fb,
+                    exact: item.exact,
+                });
                 return;
             }
             Probe::Undecided if new_diam < SINGULAR_FLOOR => {
                 let node = push_node(out, item.node, level, new_diam);
-                out.leaves.push(Leaf { tb, node, fa, fb, exact: item.exact });
+                out.leaves.push(Leaf {
+                    tb,
+                    node,
+                    fa,
+                    fb,
+                    exact: item.exact,
+                });
                 return;
             }
             Probe::Undecided => {}
@@ -350,7 +385,13 @@ fn step<S: Num>(
     let Some(kids) = tb.split4() else {
         // Collapsed at the rounding floor: hand it to the certification phase.
         let node = push_node(out, item.node, level, new_diam);
-        out.leaves.push(Leaf { tb, node, fa, fb, exact: item.exact });
+        out.leaves.push(Leaf {
+            tb,
+            node,
+            fa,
+            fb,
+            exact: item.exact,
+        });
         return;
     };
     out.counters.splits += 1;

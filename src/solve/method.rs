@@ -134,7 +134,11 @@ pub fn preprocess_general<S: Num>(fa: &TriBezier<S>, fb: &TriBezier<S>, c: [f64;
     let (a64, b64) = (fa.map(|x| x.to_f64()), fb.map(|x| x.to_f64()));
     let grad_hess = |p: &TriBezier<f64>| {
         let (pu, pv) = (p.deriv_u(), p.deriv_v());
-        let h = [pu.deriv_u().eval_bary(&c), pu.deriv_v().eval_bary(&c), pv.deriv_v().eval_bary(&c)];
+        let h = [
+            pu.deriv_u().eval_bary(&c),
+            pu.deriv_v().eval_bary(&c),
+            pv.deriv_v().eval_bary(&c),
+        ];
         ([pu.eval_bary(&c), pv.eval_bary(&c)], h)
     };
     let ((fg, fh), (gg, gh)) = (grad_hess(&a64), grad_hess(&b64));
@@ -153,7 +157,10 @@ pub fn preprocess_general<S: Num>(fa: &TriBezier<S>, fb: &TriBezier<S>, c: [f64;
         }
     }
     let y = solve3(mmt, [-fh[0], -fh[1], -fh[2]])?;
-    let x: Vec<f64> = cols.iter().map(|col| col[0] * y[0] + col[1] * y[1] + col[2] * y[2]).collect();
+    let x: Vec<f64> = cols
+        .iter()
+        .map(|col| col[0] * y[0] + col[1] * y[1] + col[2] * y[2])
+        .collect();
     if x.iter().any(|v| !v.is_finite() || v.abs() > 1e8) {
         return None;
     }

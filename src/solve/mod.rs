@@ -24,12 +24,12 @@ pub mod tribox;
 use crate::error::{Error, Result};
 use crate::poly::{Polynomial, TensorBezier, TriBezier};
 use crate::scalar::{interval, point, Scalar};
-use driver::{path_diameters, Counters, ExactPair, Leaf, Limits, Probe};
 pub use driver::SplitRule;
-use num_rational::BigRational;
+use driver::{path_diameters, Counters, ExactPair, Leaf, Limits, Probe};
 use inari::Interval;
 use krawczyk::{IBox, System, Verdict};
 pub use method::Method;
+use num_rational::BigRational;
 
 /// The domain of the unknowns.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -67,7 +67,10 @@ impl Default for SolveOptions {
             method: Method::Hc,
             eps: 1e-12,
             max_boxes: 200_000,
-            max_depth: 400, probe: true, split: SplitRule::Halving }
+            max_depth: 400,
+            probe: true,
+            split: SplitRule::Halving,
+        }
     }
 }
 
@@ -292,7 +295,12 @@ pub fn solve(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions
             let (tf, tg) = (ef.map(enclose), eg.map(enclose));
             check_system(&tf, &tg)?;
             let global = System::new(tf.clone(), tg.clone());
-            let piece = Piece { f: tf, g: tg, frame: Frame::Identity, exact: Some([ef, eg]) };
+            let piece = Piece {
+                f: tf,
+                g: tg,
+                frame: Frame::Identity,
+                exact: Some([ef, eg]),
+            };
             Ok(solve_pieces(vec![piece], &global, Domain::Triangle, opts))
         }
         Domain::Square => {
@@ -343,14 +351,33 @@ pub fn solve_triangle(f: &TriBezier<Interval>, g: &TriBezier<Interval>, opts: &S
         (Some(a), Some(b)) => Some([a, b]),
         _ => None,
     };
-    Ok(solve_pieces(vec![Piece { f, g, frame: Frame::Identity, exact }], &global, Domain::Triangle, opts))
+    Ok(solve_pieces(
+        vec![Piece {
+            f,
+            g,
+            frame: Frame::Identity,
+            exact,
+        }],
+        &global,
+        Domain::Triangle,
+        opts,
+    ))
 }
 
 /// The exact polynomial of a point-interval input (its coefficients are
 /// exactly those floats), or `None` if any coefficient is a proper interval.
 fn points_exact(p: &TriBezier<Interval>) -> Option<TriBezier<BigRational>> {
-    let coeffs: Option<Vec<BigRational>> =
-        p.coeffs().iter().map(|c| if c.inf() == c.sup() { BigRational::from_float(c.inf()) } else { None }).collect();
+    let coeffs: Option<Vec<BigRational>> = p
+        .coeffs()
+        .iter()
+        .map(|c| {
+            if c.inf() == c.sup() {
+                BigRational::from_float(c.inf())
+            } else {
+                None
+            }
+        })
+        .collect();
     TriBezier::new(p.degree(), coeffs?).ok()
 }
 
@@ -390,8 +417,18 @@ fn square_pieces(
         None => (None, None),
     };
     let pieces = vec![
-        Piece { f: fa, g: ga, frame: Frame::Identity, exact: ea },
-        Piece { f: fb, g: gb, frame: Frame::Reflect, exact: eb },
+        Piece {
+            f: fa,
+            g: ga,
+            frame: Frame::Identity,
+            exact: ea,
+        },
+        Piece {
+            f: fb,
+            g: gb,
+            frame: Frame::Reflect,
+            exact: eb,
+        },
     ];
     Ok(solve_pieces(pieces, &global, Domain::Square, opts))
 }
@@ -402,12 +439,7 @@ struct Found {
     diameters: Vec<f64>,
 }
 
-fn solve_pieces(
-    pieces: Vec<Piece>,
-    global: &System,
-    domain: Domain,
-    opts: &SolveOptions,
-) -> Solution {
+fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &SolveOptions) -> Solution {
     let limits = opts.limits();
     let mut stats = Stats::default();
     let (mut roots, mut clusters) = (Vec::new(), Vec::new());
@@ -426,21 +458,32 @@ fn solve_pieces(
         let run = driver::run(f, g, exact.as_ref(), &limits, &mut probe);
         add_counters(&mut stats.run, &run.counters);
         stats.krawczyk_calls += run.counters.probes;
-        stats.max_level = stats.max_level.max(run.nodes.iter().map(|n| n.level).max().unwrap_or(0));
+        stats.max_level = stats
+            .max_level
+            .max(run.nodes.iter().map(|n| n.level).max().unwrap_or(0));
         stats.leaves += run.leaves.len();
         let leaves: Vec<Found> = run
             .leaves
             .iter()
-            .map(|leaf| Found { bx: local_box(leaf), diameters: path_diameters(&run.nodes, leaf.node) })
+            .map(|leaf| Found {
+                bx: local_box(leaf),
+                diameters: path_diameters(&run.nodes, leaf.node),
+            })
             .collect();
         let (r, c) = certify_groups(group_overlapping(leaves), &local, &mut stats);
-        let to_global = |x: Found| Found { bx: frame.map_box(x.bx), diameters: x.diameters };
+        let to_global = |x: Found| Found {
+            bx: frame.map_box(x.bx),
+            diameters: x.diameters,
+        };
         roots.extend(merge_roots(r, &local, &mut stats).into_iter().map(to_global));
         clusters.extend(c.into_iter().map(to_global));
         for leaf in &run.leftovers {
             let bx = frame.map_box(local_box(leaf));
             let triangle = leaf.tb.verts.map(|p| frame.map_point(p));
-            leftovers.push(Leftover { bx: Box2::of(bx), triangle });
+            leftovers.push(Leftover {
+                bx: Box2::of(bx),
+                triangle,
+            });
         }
     }
     // Across pieces (the square's diagonal), in the global frame: there the

@@ -141,7 +141,10 @@ impl TriBox {
         let rho = 1.0 - (mins[0] + mins[1] + mins[2]);
         let centre = |pts: &[[f64; 2]]| {
             let n = pts.len() as f64;
-            [pts.iter().map(|p| p[0]).sum::<f64>() / n, pts.iter().map(|p| p[1]).sum::<f64>() / n]
+            [
+                pts.iter().map(|p| p[0]).sum::<f64>() / n,
+                pts.iter().map(|p| p[1]).sum::<f64>() / n,
+            ]
         };
         let ck = centre(&corners.iter().map(|k| [k[0].mid(), k[1].mid()]).collect::<Vec<_>>());
         let ct = centre(&self.verts);
@@ -153,7 +156,12 @@ impl TriBox {
         // Rounding scale: coordinates near the tri-box, never below the
         // tri-box's own size (a clip to a point at the origin still needs a
         // triangle of representable, provable size around it).
-        let scale = ck[0].abs().max(ck[1].abs()).max(ct[0].abs()).max(ct[1].abs()).max(self.diam());
+        let scale = ck[0]
+            .abs()
+            .max(ck[1].abs())
+            .max(ct[0].abs())
+            .max(ct[1].abs())
+            .max(self.diam());
         let ulp = f64::EPSILON * scale;
         let mut extra = 2.0 * (spread + 2.0 * ulp) / r + rho * f64::powi(2.0, -40);
         for _ in 0..60 {
@@ -161,7 +169,9 @@ impl TriBox {
             if lambda >= 1.0 {
                 return None;
             }
-            let verts = self.verts.map(|v| [ck[0] + lambda * (v[0] - ct[0]), ck[1] + lambda * (v[1] - ct[1])]);
+            let verts = self
+                .verts
+                .map(|v| [ck[0] + lambda * (v[0] - ct[0]), ck[1] + lambda * (v[1] - ct[1])]);
             let cand = TriBox { verts };
             if cand.is_proper() && corners.iter().all(|k| cand.contains_enclosure(*k)) {
                 return Some(cand);
