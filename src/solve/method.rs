@@ -177,6 +177,8 @@ pub fn preprocess_general<S: Num>(fa: &TriBezier<S>, fb: &TriBezier<S>, c: [f64;
 
 /// Gaussian elimination with partial pivoting; `None` when a pivot is tiny
 /// relative to its row (numerically singular).
+// Row operations read one row while writing another: index loops are clearer.
+#[allow(clippy::needless_range_loop)]
 fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
     let scale: Vec<f64> = a.iter().map(|r| r.iter().fold(0.0f64, |m, x| m.max(x.abs()))).collect();
     if scale.iter().any(|&s| s == 0.0 || !s.is_finite()) {

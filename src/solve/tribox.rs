@@ -149,7 +149,7 @@ impl TriBox {
         let ck = centre(&corners.iter().map(|k| [k[0].mid(), k[1].mid()]).collect::<Vec<_>>());
         let ct = centre(&self.verts);
         let r = self.inradius();
-        if !(r > 0.0) {
+        if r.is_nan() || r <= 0.0 {
             return None;
         }
         let spread = corners.iter().flatten().map(|c| c.wid()).fold(0.0, f64::max);
