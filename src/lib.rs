@@ -18,6 +18,7 @@
 
 pub mod error;
 pub mod poly;
+pub mod ray;
 pub mod repro;
 pub mod scalar;
 pub mod solve;

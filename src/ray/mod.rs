@@ -1,0 +1,402 @@
+//! Certified ray–patch intersection: every hit of a ray with a triangular or
+//! tensor-product (rational) Bézier patch, each with a proof.
+//!
+//! # Reduction (Liu et al. 2016, §2.2, Eq. (3)–(6); Roth et al. 2000)
+//! The ray `o + t·d` is the intersection of two planes through `o` with
+//! normals `n₁, n₂ ⊥ d`. Substituting the homogeneous control points gives
+//!
+//! ```text
+//! f_k(u, v) = Σ w_ij n_k·(P_ij − o) B_ij(u, v) = 0,   k = 1, 2,
+//! ```
+//! whose roots in the domain are exactly the parameters of the hits (weights
+//! are positive, so the denominator never vanishes). The normals are
+//! `n₁ = e_a × d̃` (`e_a` the axis of `d`'s smallest component) and
+//! `n₂ = d̃ × n₁`, `d̃ = 2^s d` scaled to unit size; they are orthogonal to `d`
+//! exactly in real arithmetic and not normalized (scaling an equation does not
+//! move its roots). Every coefficient is computed in interval arithmetic, so
+//! the system handed to [`solve_triangle`]/[`solve_square`] encloses the exact
+//! one and the solver's contract carries over: each certified `(u, v)` box
+//! holds exactly one hit of the exact ray with the exact patch.
+//!
+//! # t
+//! `t = (S(u, v) − o)·d / |d|²` (for `d` as given, not normalized), enclosed
+//! over the certified box: `S` by interval de Casteljau on each homogeneous
+//! coordinate, divided by the weight. Hits with `t` provably negative are
+//! dropped; a `t` box that straddles 0 is kept and flagged
+//! ([`Hit::t_straddles_zero`]).
+//!
+//! # Degenerate cases
+//! A ray lying in the plane of a planar patch makes an equation vanish
+//! identically: reported as [`RayOutcome::Degenerate`] (never "no hits"), as
+//! is a solve that exhausts its budget or ends in many undecided regions (a
+//! curve of hits, or a ray grazing along the surface).
+
+pub mod cli;
+pub mod patch;
+
+pub use patch::{Patch, TensorPatch, TriPatch, MAX_DEGREE};
+
+use crate::error::{Error, Result};
+use crate::poly::{TensorBezier, TriBezier};
+use crate::scalar::{interval, point};
+use crate::solve::{solve_square, solve_triangle, Box2, Solution, SolveOptions};
+use glam::DVec3;
+use inari::Interval;
+use patch::{eval_interval, Bb, Net};
+
+/// A ray `o + t·d`, `t ≥ 0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ray {
+    origin: DVec3,
+    dir: DVec3,
+}
+
+impl Ray {
+    /// A ray from `origin` along `dir` (not normalized; `t` is measured in
+    /// units of `dir`). Errors: NaN/∞ ([`Error::NonFinite`]), zero direction
+    /// ([`Error::Degenerate`]).
+    pub fn new(origin: DVec3, dir: DVec3) -> Result<Self> {
+        if !origin.is_finite() || !dir.is_finite() {
+            return Err(Error::NonFinite(format!(
+                "ray origin {:?} / direction {:?}",
+                origin.to_array(),
+                dir.to_array()
+            )));
+        }
+        if dir == DVec3::ZERO {
+            return Err(Error::Degenerate("the ray direction is zero".into()));
+        }
+        Ok(Self { origin, dir })
+    }
+
+    /// The origin `o`.
+    pub fn origin(&self) -> DVec3 {
+        self.origin
+    }
+
+    /// The direction `d`.
+    pub fn dir(&self) -> DVec3 {
+        self.dir
+    }
+
+    /// `o + t·d` in `f64`.
+    pub fn at(&self, t: f64) -> DVec3 {
+        self.origin + t * self.dir
+    }
+}
+
+/// Closed boxes of a hit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HitBox {
+    /// `[lo, hi]` in `u`.
+    pub u: [f64; 2],
+    /// `[lo, hi]` in `v`.
+    pub v: [f64; 2],
+    /// `[lo, hi]` in `t`.
+    pub t: [f64; 2],
+}
+
+/// One intersection of the ray with the patch.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Hit {
+    /// Midpoint of the `t` box.
+    pub t: f64,
+    /// Midpoint of the `u` box.
+    pub u: f64,
+    /// Midpoint of the `v` box.
+    pub v: f64,
+    /// `S(u, v)` in `f64`.
+    pub point: DVec3,
+    /// Unit normal `S_u × S_v` at `(u, v)` in `f64` (zero where undefined).
+    pub normal: DVec3,
+    /// `true`: the `(u, v)` box holds exactly one hit, a simple (transversal)
+    /// one. `false`: an undecided region (grazing ray, close hits) that may
+    /// hold any number of hits, including none.
+    pub certified: bool,
+    /// The `t` box contains 0: the hit may lie at or just behind the origin.
+    pub t_straddles_zero: bool,
+    /// The boxes; the hit's exact `(u, v, t)` lies in them.
+    pub bx: HitBox,
+}
+
+/// The hits of one ray, sorted by `t`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RayHits {
+    /// `true`: every hit with `t ≥ 0` lies in one of `hits` (certified or
+    /// not). `false`: a budget stopped the solve (never happens without also
+    /// being reported as [`RayOutcome::Degenerate`] by [`intersect`]).
+    pub complete: bool,
+    /// The hits, sorted by `t` (midpoint), then `u`, `v`.
+    pub hits: Vec<Hit>,
+}
+
+impl RayHits {
+    /// The hits that may be the nearest one: every hit whose `t` lower bound
+    /// is at most the smallest `t` upper bound of a certified hit (all hits
+    /// when none is certified). A single certified entry is a proven nearest
+    /// hit.
+    pub fn nearest(&self) -> Vec<&Hit> {
+        let best = self
+            .hits
+            .iter()
+            .filter(|h| h.certified)
+            .map(|h| h.bx.t[1])
+            .fold(f64::INFINITY, f64::min);
+        self.hits.iter().filter(|h| h.bx.t[0] <= best).collect()
+    }
+}
+
+/// Why a ray could not be answered with a list of hits.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Degeneracy {
+    /// An equation may vanish identically (every coefficient enclosure
+    /// contains 0): the ray lies in the plane of the patch, or in a plane
+    /// holding the whole control net.
+    ZeroEquation,
+    /// The solve exhausted its budget or ended in more than
+    /// [`MAX_CLUSTERS`] undecided regions: most likely a curve of hits (the ray
+    /// runs along the surface). The hits found so far are kept.
+    Unresolved(RayHits),
+}
+
+/// The answer for one ray.
+#[derive(Clone, Debug, PartialEq)]
+pub enum RayOutcome {
+    /// Every hit with `t ≥ 0`; see [`RayHits`].
+    Hits(RayHits),
+    /// No hit list can be given; see [`Degeneracy`].
+    Degenerate(Degeneracy),
+}
+
+impl RayOutcome {
+    /// A short description of a degenerate outcome (`None` for hits).
+    pub fn degenerate_reason(&self) -> Option<&'static str> {
+        match self {
+            RayOutcome::Hits(_) => None,
+            RayOutcome::Degenerate(Degeneracy::ZeroEquation) => {
+                Some("the ray lies in a plane containing the whole control net (a planar patch): an equation vanishes identically")
+            }
+            RayOutcome::Degenerate(Degeneracy::Unresolved(_)) => Some(
+                "solver budget exhausted or too many undecided regions: the ray probably runs along the surface",
+            ),
+        }
+    }
+}
+
+/// More undecided regions than this make a ray [`Degeneracy::Unresolved`].
+pub const MAX_CLUSTERS: usize = 16;
+
+/// The solver options used by [`intersect`] callers that have no opinion: the
+/// default, with a budget of 20,000 tri-boxes per triangle (a transversal
+/// ray needs a few dozen; more means a curve of hits).
+pub fn default_options() -> SolveOptions {
+    SolveOptions {
+        max_boxes: 20_000,
+        ..SolveOptions::default()
+    }
+}
+
+/// Every hit of `ray` with `patch` for `t ≥ 0`, each certified or flagged as
+/// undecided; see the module docs for the reduction and the guarantees.
+///
+/// ```
+/// use glam::DVec3;
+/// use rootclip::ray::{intersect, default_options, Ray, RayOutcome, TriPatch};
+/// // The flat triangle z = 0 with corners (0,0), (1,0), (0,1), degree 1.
+/// let p = TriPatch::new(1, vec![DVec3::new(0.0, 0.0, 0.0), DVec3::new(1.0, 0.0, 0.0), DVec3::new(0.0, 1.0, 0.0)], None).unwrap();
+/// let ray = Ray::new(DVec3::new(0.25, 0.5, 2.0), DVec3::new(0.0, 0.0, -1.0)).unwrap();
+/// let RayOutcome::Hits(h) = intersect(&p.into(), &ray, &default_options()).unwrap() else { panic!() };
+/// assert!(h.complete && h.hits.len() == 1 && h.hits[0].certified);
+/// assert!((h.hits[0].t - 2.0).abs() < 1e-12);
+/// ```
+pub fn intersect(patch: &Patch, ray: &Ray, opts: &SolveOptions) -> Result<RayOutcome> {
+    let planes = Planes::of(ray);
+    let solved = match patch {
+        Patch::Triangle(p) => {
+            let [f, g] = reduce(p.inet(), &planes);
+            let n = p.degree();
+            let (f, g) = (TriBezier::new(n, f)?, TriBezier::new(n, g)?);
+            run(f.coeffs(), g.coeffs(), || solve_triangle(&f, &g, opts))?
+        }
+        Patch::Tensor(p) => {
+            let [f, g] = reduce(p.inet(), &planes);
+            let (m, n) = p.degree();
+            let (f, g) = (
+                TensorBezier::on_unit_square(m, n, f)?,
+                TensorBezier::on_unit_square(m, n, g)?,
+            );
+            run(f.coeffs(), g.coeffs(), || solve_square(&f, &g, opts))?
+        }
+    };
+    let sol = match solved {
+        Solved::Solution(s) => s,
+        Solved::NoHits => {
+            return Ok(RayOutcome::Hits(RayHits {
+                complete: true,
+                hits: Vec::new(),
+            }))
+        }
+        Solved::ZeroEquation => return Ok(RayOutcome::Degenerate(Degeneracy::ZeroEquation)),
+    };
+    let hits = match patch {
+        Patch::Triangle(p) => collect_hits(&sol, p.inet(), patch, &planes),
+        Patch::Tensor(p) => collect_hits(&sol, p.inet(), patch, &planes),
+    };
+    if !sol.complete || sol.clusters.len() > MAX_CLUSTERS {
+        return Ok(RayOutcome::Degenerate(Degeneracy::Unresolved(RayHits {
+            complete: sol.complete,
+            hits,
+        })));
+    }
+    Ok(RayOutcome::Hits(RayHits { complete: true, hits }))
+}
+
+enum Solved {
+    Solution(Solution),
+    /// An equation's coefficients all have one strict sign.
+    NoHits,
+    ZeroEquation,
+}
+
+/// Screens the reduced system before solving: a one-signed equation proves
+/// there is no hit (this also settles a ray in the plane of a planar patch
+/// that misses it); an equation that may be identically zero is degenerate.
+fn run(f: &[Interval], g: &[Interval], solve: impl FnOnce() -> Result<Solution>) -> Result<Solved> {
+    let one_signed = |c: &[Interval]| c.iter().all(|x| x.inf() > 0.0) || c.iter().all(|x| x.sup() < 0.0);
+    if one_signed(f) || one_signed(g) {
+        return Ok(Solved::NoHits);
+    }
+    let maybe_zero = |c: &[Interval]| c.iter().all(|x| x.contains(0.0));
+    if maybe_zero(f) || maybe_zero(g) {
+        return Ok(Solved::ZeroEquation);
+    }
+    match solve() {
+        Ok(s) => Ok(Solved::Solution(s)),
+        // Unreachable after the screen above (kept as the solver's own word).
+        Err(Error::Degenerate(_)) => Ok(Solved::ZeroEquation),
+        Err(e) => Err(e),
+    }
+}
+
+/// The two planes through the ray, in interval arithmetic.
+struct Planes {
+    o: [Interval; 3],
+    n: [[Interval; 3]; 2],
+    /// `d̃ = 2^s d` (enclosed) and `2^s`.
+    d: [Interval; 3],
+    scale: Interval,
+}
+
+impl Planes {
+    fn of(ray: &Ray) -> Self {
+        let d = ray.dir;
+        let big = d.abs().max_element();
+        // A power of two, clamped so that it stays finite.
+        let e = big.log2().floor().clamp(-1000.0, 1000.0) as i32;
+        let scale = point(2f64.powi(-e));
+        let dt = [point(d.x) * scale, point(d.y) * scale, point(d.z) * scale];
+        let a = d.abs();
+        let axis = if a.x <= a.y && a.x <= a.z {
+            0
+        } else if a.y <= a.z {
+            1
+        } else {
+            2
+        };
+        let mut e_a = [point(0.0); 3];
+        e_a[axis] = point(1.0);
+        let n1 = cross(e_a, dt);
+        let n2 = cross(dt, n1);
+        Self {
+            o: ray.origin.to_array().map(point),
+            n: [n1, n2],
+            d: dt,
+            scale,
+        }
+    }
+
+    /// `t = (S − o)·d / |d|² = 2^s (S − o)·d̃ / |d̃|²`.
+    fn t_of(&self, s: [Interval; 3]) -> Interval {
+        let num = (0..3).fold(point(0.0), |acc, c| acc + (s[c] - self.o[c]) * self.d[c]);
+        let den = (0..3).fold(point(0.0), |acc, c| acc + self.d[c].sqr());
+        self.scale * num / den
+    }
+}
+
+fn cross(a: [Interval; 3], b: [Interval; 3]) -> [Interval; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// `f_k` coefficients `n_k·(wP − w o)` in storage order, for `k = 1, 2`.
+fn reduce<P: HasCoeffs>(net: &Net<P>, planes: &Planes) -> [Vec<Interval>; 2] {
+    let cols: [&[Interval]; 4] = std::array::from_fn(|c| net.c[c].coeff_slice());
+    let len = cols[3].len();
+    [0, 1].map(|k| {
+        let n = planes.n[k];
+        (0..len)
+            .map(|i| {
+                (0..3).fold(point(0.0), |acc, c| {
+                    acc + n[c] * (cols[c][i] - cols[3][i] * planes.o[c])
+                })
+            })
+            .collect()
+    })
+}
+
+trait HasCoeffs {
+    fn coeff_slice(&self) -> &[Interval];
+}
+
+impl HasCoeffs for TriBezier<Interval> {
+    fn coeff_slice(&self) -> &[Interval] {
+        self.coeffs()
+    }
+}
+
+impl HasCoeffs for TensorBezier<Interval> {
+    fn coeff_slice(&self) -> &[Interval] {
+        self.coeffs()
+    }
+}
+
+/// Roots and clusters become hits (clusters with `certified = false`); hits
+/// with `t` provably negative are dropped; sorted by `t`.
+fn collect_hits<P: Bb<Interval>>(sol: &Solution, net: &Net<P>, patch: &Patch, planes: &Planes) -> Vec<Hit> {
+    let regions = sol
+        .roots
+        .iter()
+        .map(|r| (r.bx, true))
+        .chain(sol.clusters.iter().map(|c| (c.bx, false)));
+    let mut hits: Vec<Hit> = regions
+        .filter_map(|(bx, certified)| hit_of(bx, certified, net, patch, planes))
+        .collect();
+    hits.sort_by(|a, b| a.t.total_cmp(&b.t).then(a.u.total_cmp(&b.u)).then(a.v.total_cmp(&b.v)));
+    hits
+}
+
+fn hit_of<P: Bb<Interval>>(bx: Box2, certified: bool, net: &Net<P>, patch: &Patch, planes: &Planes) -> Option<Hit> {
+    let (uu, vv) = (interval(bx.u[0], bx.u[1]), interval(bx.v[0], bx.v[1]));
+    let t = planes.t_of(eval_interval(net, uu, vv));
+    if t.sup() < 0.0 {
+        return None;
+    }
+    let (u, v) = (uu.mid(), vv.mid());
+    Some(Hit {
+        t: t.mid(),
+        u,
+        v,
+        point: patch.eval(u, v),
+        normal: patch.normal(u, v),
+        certified,
+        t_straddles_zero: t.inf() <= 0.0,
+        bx: HitBox {
+            u: bx.u,
+            v: bx.v,
+            t: [t.inf(), t.sup()],
+        },
+    })
+}

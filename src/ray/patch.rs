@@ -1,0 +1,354 @@
+//! Patch types of the ray front end: triangular and tensor-product Bézier
+//! patches, polynomial or rational, with validated input.
+//!
+//! A patch is stored as its *homogeneous* control net `(w·x, w·y, w·z, w)`
+//! (with `w = 1` for polynomial patches) in two kernels: `f64` for points,
+//! partials and normals, and [`Interval`] for everything that is proven (the
+//! reduced system and the enclosure of `t`). The interval net encloses the
+//! exact products `w·x` of the input floats.
+
+use crate::error::{Error, Result};
+use crate::poly::{tri_len, Direction, TensorBezier, TriBezier};
+use crate::scalar::point;
+use crate::Scalar;
+use glam::DVec3;
+use inari::Interval;
+
+/// A triangular Bézier patch of degree `n` (Liu et al. 2016, Eq. (2)):
+///
+/// ```text
+/// S(u, v) = Σ_{j=0}^{n} Σ_{i=0}^{n−j} w_ij R_ij B^n_ij(u, v) / Σ w_ij B^n_ij(u, v),
+/// B^n_ij = n!/(i! j! (n−i−j)!) u^i v^j (1−u−v)^(n−i−j),   u, v ≥ 0, u + v ≤ 1,
+/// ```
+/// control points ordered `j = 0..=n` outer, `i = 0..=n−j` inner; all
+/// `w_ij = 1` when no weights are given.
+#[derive(Clone, Debug)]
+pub struct TriPatch {
+    degree: usize,
+    points: Vec<DVec3>,
+    weights: Option<Vec<f64>>,
+    net: Net<TriBezier<f64>>,
+    inet: Net<TriBezier<Interval>>,
+}
+
+/// A tensor-product Bézier patch of bidegree `(m, n)` on `[0, 1]²`:
+/// `S(u, v) = Σ w_ij P_ij B^m_i(u) B^n_j(v) / Σ w_ij B^m_i(u) B^n_j(v)`,
+/// control point `P_ij` at index `i·(n+1) + j` (row-major).
+#[derive(Clone, Debug)]
+pub struct TensorPatch {
+    degree: (usize, usize),
+    points: Vec<DVec3>,
+    weights: Option<Vec<f64>>,
+    net: Net<TensorBezier<f64>>,
+    inet: Net<TensorBezier<Interval>>,
+}
+
+/// Either kind of patch.
+// Patches are built once and borrowed by every ray: the size difference of
+// the variants costs nothing, boxing would cost an indirection per ray.
+#[allow(clippy::large_enum_variant)]
+#[derive(Clone, Debug)]
+pub enum Patch {
+    /// A triangular patch on the unit triangle.
+    Triangle(TriPatch),
+    /// A tensor-product patch on the unit square.
+    Tensor(TensorPatch),
+}
+
+impl From<TriPatch> for Patch {
+    fn from(p: TriPatch) -> Self {
+        Patch::Triangle(p)
+    }
+}
+
+impl From<TensorPatch> for Patch {
+    fn from(p: TensorPatch) -> Self {
+        Patch::Tensor(p)
+    }
+}
+
+/// The homogeneous coordinate polynomials `(w·x, w·y, w·z, w)`.
+#[derive(Clone, Debug)]
+pub(crate) struct Net<P> {
+    pub(crate) c: [P; 4],
+}
+
+/// What the ray code needs from a BB polynomial type (triangle or tensor).
+pub(crate) trait Bb<S: Scalar>: Clone {
+    fn value(&self, u: S, v: S) -> S;
+    fn d_u(&self) -> Self;
+    fn d_v(&self) -> Self;
+}
+
+impl<S: Scalar> Bb<S> for TriBezier<S> {
+    fn value(&self, u: S, v: S) -> S {
+        self.eval(u, v)
+    }
+    fn d_u(&self) -> Self {
+        self.deriv_u()
+    }
+    fn d_v(&self) -> Self {
+        self.deriv_v()
+    }
+}
+
+impl<S: Scalar> Bb<S> for TensorBezier<S> {
+    fn value(&self, u: S, v: S) -> S {
+        self.eval(u, v)
+    }
+    fn d_u(&self) -> Self {
+        self.deriv(Direction::U)
+    }
+    fn d_v(&self) -> Self {
+        self.deriv(Direction::V)
+    }
+}
+
+/// Checks points and weights; returns the homogeneous coefficients as
+/// `[wx, wy, wz, w]` columns in `f64` (rounded) and in intervals (enclosing).
+type Columns = (Vec<[f64; 4]>, Vec<[Interval; 4]>);
+
+fn homogeneous(points: &[DVec3], weights: Option<&[f64]>, want: usize) -> Result<Columns> {
+    if points.len() != want {
+        return Err(Error::Shape(format!(
+            "the patch needs {want} control points, got {}",
+            points.len()
+        )));
+    }
+    if let Some(k) = points.iter().position(|p| !p.is_finite()) {
+        return Err(Error::NonFinite(format!(
+            "control point {k} is {:?}",
+            points[k].to_array()
+        )));
+    }
+    if let Some(w) = weights {
+        if w.len() != want {
+            return Err(Error::Shape(format!("the patch needs {want} weights, got {}", w.len())));
+        }
+        if let Some(k) = w.iter().position(|x| !x.is_finite()) {
+            return Err(Error::NonFinite(format!("weight {k} is {}", w[k])));
+        }
+        // Positive weights keep the denominator positive on the whole domain, so
+        // the roots of the homogeneous system are exactly the hits.
+        if let Some(k) = w.iter().position(|&x| x <= 0.0) {
+            return Err(Error::Degenerate(format!(
+                "weight {k} is {}; weights must be positive",
+                w[k]
+            )));
+        }
+    }
+    let mut fl = Vec::with_capacity(want);
+    let mut iv = Vec::with_capacity(want);
+    for (k, p) in points.iter().enumerate() {
+        let w = weights.map_or(1.0, |w| w[k]);
+        let wi = point(w);
+        fl.push([w * p.x, w * p.y, w * p.z, w]);
+        iv.push([wi * point(p.x), wi * point(p.y), wi * point(p.z), wi]);
+    }
+    if iv.iter().flatten().any(|c| !c.is_finite()) {
+        return Err(Error::NonFinite("a weighted control point overflows".into()));
+    }
+    Ok((fl, iv))
+}
+
+fn column<S: Clone>(rows: &[[S; 4]], c: usize) -> Vec<S> {
+    rows.iter().map(|r| r[c].clone()).collect()
+}
+
+impl TriPatch {
+    /// A patch of degree `n ≥ 1` from `(n+1)(n+2)/2` control points in the
+    /// order of Eq. (2) and optional weights in the same order. Errors: wrong
+    /// counts ([`Error::Shape`]), NaN or ±∞ ([`Error::NonFinite`]), a weight
+    /// `≤ 0` ([`Error::Degenerate`]).
+    pub fn new(degree: usize, points: Vec<DVec3>, weights: Option<Vec<f64>>) -> Result<Self> {
+        if degree == 0 || degree > MAX_DEGREE {
+            return Err(Error::Shape(format!(
+                "triangle degree must be in 1..={MAX_DEGREE}, got {degree}"
+            )));
+        }
+        let (fl, iv) = homogeneous(&points, weights.as_deref(), tri_len(degree))?;
+        let net = Net {
+            c: [0, 1, 2, 3].map(|c| TriBezier::new(degree, column(&fl, c))),
+        };
+        let inet = Net {
+            c: [0, 1, 2, 3].map(|c| TriBezier::new(degree, column(&iv, c))),
+        };
+        Ok(Self {
+            degree,
+            points,
+            weights,
+            net: lift(net)?,
+            inet: lift(inet)?,
+        })
+    }
+
+    /// The degree `n`.
+    pub fn degree(&self) -> usize {
+        self.degree
+    }
+
+    /// The control points in the order of Eq. (2).
+    pub fn points(&self) -> &[DVec3] {
+        &self.points
+    }
+
+    /// The weights, if rational.
+    pub fn weights(&self) -> Option<&[f64]> {
+        self.weights.as_deref()
+    }
+
+    /// `S(u, v)` in `f64`.
+    pub fn eval(&self, u: f64, v: f64) -> DVec3 {
+        eval_f64(&self.net, u, v)
+    }
+
+    /// `(∂S/∂u, ∂S/∂v)` in `f64` (`w = 1 − u − v` moves with `u` and `v`).
+    pub fn partials(&self, u: f64, v: f64) -> (DVec3, DVec3) {
+        partials_f64(&self.net, u, v)
+    }
+
+    pub(crate) fn inet(&self) -> &Net<TriBezier<Interval>> {
+        &self.inet
+    }
+}
+
+impl TensorPatch {
+    /// A patch of bidegree `(m, n)`, `m, n ≥ 1`, from `(m+1)(n+1)` row-major
+    /// control points and optional weights. Errors as [`TriPatch::new`].
+    pub fn new(m: usize, n: usize, points: Vec<DVec3>, weights: Option<Vec<f64>>) -> Result<Self> {
+        if m == 0 || n == 0 || m > MAX_DEGREE || n > MAX_DEGREE {
+            return Err(Error::Shape(format!(
+                "tensor bidegree must be in 1..={MAX_DEGREE} each, got ({m}, {n})"
+            )));
+        }
+        let (fl, iv) = homogeneous(&points, weights.as_deref(), (m + 1) * (n + 1))?;
+        let net = Net {
+            c: [0, 1, 2, 3].map(|c| TensorBezier::on_unit_square(m, n, column(&fl, c))),
+        };
+        let inet = Net {
+            c: [0, 1, 2, 3].map(|c| TensorBezier::on_unit_square(m, n, column(&iv, c))),
+        };
+        Ok(Self {
+            degree: (m, n),
+            points,
+            weights,
+            net: lift(net)?,
+            inet: lift(inet)?,
+        })
+    }
+
+    /// The bidegree `(m, n)`.
+    pub fn degree(&self) -> (usize, usize) {
+        self.degree
+    }
+
+    /// The control points, row-major.
+    pub fn points(&self) -> &[DVec3] {
+        &self.points
+    }
+
+    /// The weights, if rational.
+    pub fn weights(&self) -> Option<&[f64]> {
+        self.weights.as_deref()
+    }
+
+    /// `S(u, v)` in `f64`.
+    pub fn eval(&self, u: f64, v: f64) -> DVec3 {
+        eval_f64(&self.net, u, v)
+    }
+
+    /// `(∂S/∂u, ∂S/∂v)` in `f64`.
+    pub fn partials(&self, u: f64, v: f64) -> (DVec3, DVec3) {
+        partials_f64(&self.net, u, v)
+    }
+
+    /// The same surface as two triangular patches of degree `m + n` (the
+    /// exact conversion of [`TensorBezier::to_triangles`], rounded to `f64`
+    /// control points): the first covers `u + v ≤ 1` with `(u, v)` as its
+    /// parameters, the second `u + v ≥ 1` with parameters `(1 − u, 1 − v)`.
+    pub fn to_triangles(&self) -> Result<[TriPatch; 2]> {
+        let halves = self.net.c.clone().map(|p| p.to_triangles());
+        let n = self.degree.0 + self.degree.1;
+        let make = |h: usize| -> Result<TriPatch> {
+            let w: Vec<f64> = halves[3][h].coeffs().to_vec();
+            let pts = (0..w.len())
+                .map(|k| {
+                    DVec3::new(
+                        halves[0][h].coeffs()[k],
+                        halves[1][h].coeffs()[k],
+                        halves[2][h].coeffs()[k],
+                    ) / w[k]
+                })
+                .collect();
+            TriPatch::new(n, pts, self.weights.as_ref().map(|_| w))
+        };
+        Ok([make(0)?, make(1)?])
+    }
+
+    pub(crate) fn inet(&self) -> &Net<TensorBezier<Interval>> {
+        &self.inet
+    }
+}
+
+impl Patch {
+    /// `S(u, v)` in `f64`.
+    pub fn eval(&self, u: f64, v: f64) -> DVec3 {
+        match self {
+            Patch::Triangle(p) => p.eval(u, v),
+            Patch::Tensor(p) => p.eval(u, v),
+        }
+    }
+
+    /// `(∂S/∂u, ∂S/∂v)` in `f64`.
+    pub fn partials(&self, u: f64, v: f64) -> (DVec3, DVec3) {
+        match self {
+            Patch::Triangle(p) => p.partials(u, v),
+            Patch::Tensor(p) => p.partials(u, v),
+        }
+    }
+
+    /// The unit normal `S_u × S_v / |S_u × S_v|` in `f64`; the zero vector
+    /// where the partials are parallel (a collapsed corner or edge).
+    pub fn normal(&self, u: f64, v: f64) -> DVec3 {
+        let (su, sv) = self.partials(u, v);
+        su.cross(sv).normalize_or_zero()
+    }
+
+    /// The control points.
+    pub fn points(&self) -> &[DVec3] {
+        match self {
+            Patch::Triangle(p) => p.points(),
+            Patch::Tensor(p) => p.points(),
+        }
+    }
+}
+
+/// Degrees above this are refused (the solver's work grows like `n⁴`).
+pub const MAX_DEGREE: usize = 40;
+
+fn lift<P>(net: Net<Result<P>>) -> Result<Net<P>> {
+    let [a, b, c, d] = net.c;
+    Ok(Net { c: [a?, b?, c?, d?] })
+}
+
+fn eval_f64<P: Bb<f64>>(net: &Net<P>, u: f64, v: f64) -> DVec3 {
+    let h: [_; 4] = std::array::from_fn(|k| net.c[k].value(u, v));
+    DVec3::new(h[0], h[1], h[2]) / h[3]
+}
+
+fn partials_f64<P: Bb<f64>>(net: &Net<P>, u: f64, v: f64) -> (DVec3, DVec3) {
+    let h: [_; 4] = std::array::from_fn(|k| net.c[k].value(u, v));
+    let (x, w) = (DVec3::new(h[0], h[1], h[2]), h[3]);
+    // Quotient rule on (X/W): (X' W − X W') / W².
+    let d = |ds: [f64; 4]| (DVec3::new(ds[0], ds[1], ds[2]) * w - x * ds[3]) / (w * w);
+    let du: [f64; 4] = std::array::from_fn(|k| net.c[k].d_u().value(u, v));
+    let dv: [f64; 4] = std::array::from_fn(|k| net.c[k].d_v().value(u, v));
+    (d(du), d(dv))
+}
+
+/// The enclosure of `S` over the box `(U, V)`: each homogeneous coordinate
+/// by interval de Casteljau, then divided by the weight's enclosure.
+pub(crate) fn eval_interval<P: Bb<Interval>>(net: &Net<P>, u: Interval, v: Interval) -> [Interval; 3] {
+    let h: [_; 4] = std::array::from_fn(|k| net.c[k].value(u, v));
+    [h[0] / h[3], h[1] / h[3], h[2] / h[3]]
+}

@@ -1,0 +1,483 @@
+//! Property tests of the certified ray–patch intersection (`rootclip::ray`).
+//!
+//! Rays are *aimed*: a random parameter `(u0, v0)` of a random patch is mapped
+//! to `P = S(u0, v0)` in `f64` and the ray is sent through `P` roughly against
+//! the surface normal, so its hit is planted and transversal. Checked:
+//! * the planted hit is reported, certified, with `(u0, v0)` in its boxes up
+//!   to `1e-9` (the only tolerance: `P` and the origin are rounded floats);
+//! * every reported hit passes an independent check: `S(u, v)` evaluated here
+//!   in `f64` by the explicit Bernstein sums (not the crate's de Casteljau)
+//!   lies within `1e-9` of the ray, at a ray parameter inside the `t` box;
+//! * a tensor patch solved through the square route agrees with its two
+//!   triangular halves solved one by one;
+//! * rays that miss the control net's bounding box report no hit;
+//! * degenerate and bad input give typed answers, never "no hits".
+
+use glam::DVec3;
+use proptest::collection::vec;
+use proptest::prelude::*;
+use proptest::test_runner::Config;
+use rootclip::ray::{cli, default_options, intersect, Degeneracy, Hit, Patch, Ray, RayOutcome, TensorPatch, TriPatch};
+use rootclip::Error;
+
+// ---------------------------------------------------------------------------
+// Independent evaluation: explicit Bernstein sums
+// ---------------------------------------------------------------------------
+
+fn binom(n: usize, k: usize) -> f64 {
+    (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
+}
+
+fn fact(n: usize) -> f64 {
+    (1..=n).fold(1.0, |a, k| a * k as f64)
+}
+
+fn powi(x: f64, k: usize) -> f64 {
+    x.powi(k as i32)
+}
+
+/// `(Σ w B P, Σ w B)` of a triangular patch at `(u, v)` (Eq. (2) order).
+fn tri_sum(n: usize, pts: &[DVec3], w: Option<&[f64]>, u: f64, v: f64) -> DVec3 {
+    let (mut num, mut den, mut k) = (DVec3::ZERO, 0.0, 0);
+    for j in 0..=n {
+        for i in 0..=n - j {
+            let b = fact(n) / (fact(i) * fact(j) * fact(n - i - j))
+                * powi(u, i)
+                * powi(v, j)
+                * powi(1.0 - u - v, n - i - j);
+            let wk = w.map_or(1.0, |w| w[k]);
+            num += pts[k] * (wk * b);
+            den += wk * b;
+            k += 1;
+        }
+    }
+    num / den
+}
+
+fn tensor_sum(m: usize, n: usize, pts: &[DVec3], w: Option<&[f64]>, u: f64, v: f64) -> DVec3 {
+    let (mut num, mut den) = (DVec3::ZERO, 0.0);
+    for i in 0..=m {
+        for j in 0..=n {
+            let b = binom(m, i) * powi(u, i) * powi(1.0 - u, m - i) * binom(n, j) * powi(v, j) * powi(1.0 - v, n - j);
+            let k = i * (n + 1) + j;
+            let wk = w.map_or(1.0, |w| w[k]);
+            num += pts[k] * (wk * b);
+            den += wk * b;
+        }
+    }
+    num / den
+}
+
+fn surface(patch: &Patch, u: f64, v: f64) -> DVec3 {
+    match patch {
+        Patch::Triangle(p) => tri_sum(p.degree(), p.points(), p.weights(), u, v),
+        Patch::Tensor(p) => {
+            let (m, n) = p.degree();
+            tensor_sum(m, n, p.points(), p.weights(), u, v)
+        }
+    }
+}
+
+/// Distance of `q` from the (infinite) line of the ray, and its parameter.
+fn line_distance(ray: &Ray, q: DVec3) -> (f64, f64) {
+    let d = ray.dir();
+    let t = (q - ray.origin()).dot(d) / d.length_squared();
+    ((ray.at(t) - q).length(), t)
+}
+
+/// Distance from `x` to the closed interval `b`.
+fn gap(b: [f64; 2], x: f64) -> f64 {
+    (b[0] - x).max(x - b[1]).max(0.0)
+}
+
+// ---------------------------------------------------------------------------
+// Generators
+// ---------------------------------------------------------------------------
+
+/// A gently curved triangular patch of degree `n`: the domain grid lifted by
+/// small random offsets (so it is a graph-like surface without folds).
+fn tri_patch(n: usize, offsets: &[f64], weights: Option<Vec<f64>>) -> TriPatch {
+    let mut pts = Vec::new();
+    let mut k = 0;
+    for j in 0..=n {
+        for i in 0..=n - j {
+            let o = &offsets[3 * k..3 * k + 3];
+            pts.push(DVec3::new(
+                i as f64 / n as f64 + 0.1 * o[0],
+                j as f64 / n as f64 + 0.1 * o[1],
+                0.5 * o[2],
+            ));
+            k += 1;
+        }
+    }
+    TriPatch::new(n, pts, weights).unwrap()
+}
+
+fn tensor_patch(m: usize, n: usize, offsets: &[f64], weights: Option<Vec<f64>>) -> TensorPatch {
+    let mut pts = Vec::new();
+    for i in 0..=m {
+        for j in 0..=n {
+            let o = &offsets[3 * (i * (n + 1) + j)..];
+            pts.push(DVec3::new(
+                i as f64 / m as f64 + 0.1 * o[0],
+                j as f64 / n as f64 + 0.1 * o[1],
+                0.5 * o[2],
+            ));
+        }
+    }
+    TensorPatch::new(m, n, pts, weights).unwrap()
+}
+
+/// A ray through `S(u0, v0)` roughly against the normal, tilted by `tilt`,
+/// starting `dist` units of the direction away.
+fn aimed_ray(patch: &Patch, u0: f64, v0: f64, tilt: [f64; 2], dist: f64) -> Ray {
+    let p = patch.eval(u0, v0);
+    let nrm = patch.normal(u0, v0);
+    let (a, b) = nrm.any_orthonormal_pair();
+    let d = -nrm + 0.5 * tilt[0] * a + 0.5 * tilt[1] * b;
+    Ray::new(p - dist * d, d).unwrap()
+}
+
+fn hits_of(patch: &Patch, ray: &Ray) -> Vec<Hit> {
+    match intersect(patch, ray, &default_options()).expect("valid input") {
+        RayOutcome::Hits(h) => {
+            assert!(h.complete);
+            h.hits
+        }
+        other => panic!("unexpected outcome {other:?} for {ray:?}"),
+    }
+}
+
+/// The independent check of every hit; returns the hits.
+fn check_hits(patch: &Patch, ray: &Ray, hits: &[Hit]) {
+    for w in hits.windows(2) {
+        assert!(w[0].t <= w[1].t, "hits not sorted by t");
+    }
+    for h in hits {
+        assert!(h.bx.t[1] >= 0.0, "a hit behind the origin: {h:?}");
+        assert!(h.bx.u[0] <= h.u && h.u <= h.bx.u[1] && h.bx.v[0] <= h.v && h.v <= h.bx.v[1]);
+        if !h.certified {
+            continue;
+        }
+        let q = surface(patch, h.u, h.v);
+        let (dist, t) = line_distance(ray, q);
+        let scale = 1.0 + ray.dir().length() * (1.0 + t.abs());
+        assert!(dist <= 1e-9 * scale, "S(u, v) is {dist:e} from the ray: {h:?}");
+        assert!(
+            gap(h.bx.t, t) <= 1e-9 * (1.0 + t.abs()),
+            "t = {t} outside the t box {:?}",
+            h.bx.t
+        );
+        assert!((h.point - q).length() <= 1e-9 * (1.0 + q.length()));
+    }
+}
+
+fn check_planted(patch: &Patch, ray: &Ray, u0: f64, v0: f64) {
+    let hits = hits_of(patch, ray);
+    check_hits(patch, ray, &hits);
+    let found = hits
+        .iter()
+        .any(|h| h.certified && gap(h.bx.u, u0) <= 1e-9 && gap(h.bx.v, v0) <= 1e-9);
+    assert!(found, "planted hit ({u0}, {v0}) not reported certified: {hits:?}");
+}
+
+fn cfg(cases: u32) -> Config {
+    Config {
+        cases,
+        failure_persistence: None,
+        ..Config::default()
+    }
+}
+
+proptest! {
+    #![proptest_config(cfg(48))]
+
+    #[test]
+    fn aimed_rays_hit_triangles(
+        n in 1usize..=4,
+        offsets in vec(-1.0f64..1.0, 45),
+        weights in prop::option::of(vec(0.5f64..2.0, 15)),
+        (u0, v0) in (0.02f64..0.96, 0.02f64..0.96).prop_filter("inside", |(u, v)| u + v <= 0.98),
+        tilt in prop::array::uniform2(-1.0f64..1.0),
+        dist in 0.1f64..10.0,
+    ) {
+        let w = weights.map(|w| w[..rootclip::poly::tri_len(n)].to_vec());
+        let patch: Patch = tri_patch(n, &offsets, w).into();
+        let ray = aimed_ray(&patch, u0, v0, tilt, dist);
+        check_planted(&patch, &ray, u0, v0);
+    }
+
+    #[test]
+    fn aimed_rays_hit_tensors(
+        m in 1usize..=3,
+        n in 1usize..=3,
+        offsets in vec(-1.0f64..1.0, 48),
+        weights in prop::option::of(vec(0.5f64..2.0, 16)),
+        u0 in 0.02f64..0.98,
+        v0 in 0.02f64..0.98,
+        tilt in prop::array::uniform2(-1.0f64..1.0),
+        dist in 0.1f64..10.0,
+    ) {
+        let w = weights.map(|w| w[..(m + 1) * (n + 1)].to_vec());
+        let patch: Patch = tensor_patch(m, n, &offsets, w).into();
+        let ray = aimed_ray(&patch, u0, v0, tilt, dist);
+        check_planted(&patch, &ray, u0, v0);
+    }
+
+    /// The square route (`solve_square`: the tensor split into two triangles
+    /// inside the solver) against the two triangular halves built here and
+    /// solved one by one, on random rays through the patch's box.
+    #[test]
+    fn square_route_matches_triangle_halves(
+        m in 1usize..=3,
+        n in 1usize..=2,
+        offsets in vec(-1.0f64..1.0, 48),
+        o in prop::array::uniform3(-0.5f64..1.5),
+        target in prop::array::uniform2(0.0f64..1.0),
+    ) {
+        let tp = tensor_patch(m, n, &offsets, None);
+        let patch: Patch = tp.clone().into();
+        let aim = DVec3::new(target[0], target[1], 0.0);
+        let ray = Ray::new(DVec3::new(o[0], o[1], 2.0 + o[2]), aim - DVec3::new(o[0], o[1], 2.0 + o[2])).unwrap();
+        let whole = hits_of(&patch, &ray);
+        check_hits(&patch, &ray, &whole);
+        let [a, b] = tp.to_triangles().unwrap();
+        let mut halves: Vec<(f64, f64, f64, bool)> = Vec::new();
+        for (half, reflect) in [(a, false), (b, true)] {
+            let hp: Patch = half.into();
+            for h in hits_of(&hp, &ray) {
+                let (u, v) = if reflect { (1.0 - h.u, 1.0 - h.v) } else { (h.u, h.v) };
+                // A hit on the diagonal belongs to both halves: keep it once.
+                if !halves.iter().any(|x| (x.0 - h.t).abs() < 1e-9 && (x.1 - u).abs() < 1e-9 && (x.2 - v).abs() < 1e-9) {
+                    halves.push((h.t, u, v, h.certified));
+                }
+            }
+        }
+        let certified_whole: Vec<&Hit> = whole.iter().filter(|h| h.certified).collect();
+        let certified_halves: Vec<_> = halves.iter().filter(|h| h.3).collect();
+        prop_assert_eq!(certified_whole.len(), certified_halves.len(), "{:?} vs {:?}", whole, halves);
+        for h in certified_whole {
+            prop_assert!(certified_halves.iter().any(|x| (x.0 - h.t).abs() < 1e-9 && (x.1 - h.u).abs() < 1e-9 && (x.2 - h.v).abs() < 1e-9));
+        }
+    }
+
+    /// Rays outside the control net's bounding box, parallel to an axis
+    /// or pointing away from the box, hit nothing.
+    #[test]
+    fn rays_missing_the_box_hit_nothing(
+        offsets in vec(-1.0f64..1.0, 48),
+        side in 0usize..6,
+        o in prop::array::uniform3(-3.0f64..3.0),
+        d in prop::array::uniform3(-1.0f64..1.0),
+    ) {
+        let patch: Patch = tensor_patch(3, 3, &offsets, None).into();
+        let (lo, hi) = patch.points().iter().fold((DVec3::splat(f64::MAX), DVec3::splat(f64::MIN)), |(l, h), p| (l.min(*p), h.max(*p)));
+        // Put the origin beyond face `side` and point the ray away from it.
+        let axis = side % 3;
+        let mut origin = DVec3::from_array(o);
+        let mut dir = DVec3::from_array(d);
+        if side < 3 {
+            origin[axis] = hi[axis] + 0.01 + o[axis].abs();
+            dir[axis] = d[axis].abs();
+        } else {
+            origin[axis] = lo[axis] - 0.01 - o[axis].abs();
+            dir[axis] = -d[axis].abs();
+        }
+        prop_assume!(dir.length() > 1e-3);
+        let ray = Ray::new(origin, dir).unwrap();
+        prop_assert!(hits_of(&patch, &ray).is_empty());
+    }
+}
+
+#[test]
+fn flat_triangle_hit_at_known_parameters() {
+    let pts = vec![
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(0.0, 1.0, 0.0),
+    ];
+    let patch: Patch = TriPatch::new(1, pts, None).unwrap().into();
+    let ray = Ray::new(DVec3::new(0.25, 0.5, 4.0), DVec3::new(0.0, 0.0, -2.0)).unwrap();
+    let hits = hits_of(&patch, &ray);
+    assert_eq!(hits.len(), 1);
+    let h = &hits[0];
+    assert!(h.certified && h.bx.t[0] <= 2.0 && 2.0 <= h.bx.t[1]);
+    assert!(h.bx.u[0] <= 0.25 && 0.25 <= h.bx.u[1] && h.bx.v[0] <= 0.5 && 0.5 <= h.bx.v[1]);
+    assert!((h.normal - DVec3::Z).length() < 1e-12);
+    // The ray pointing away: t = −2 is dropped.
+    let away = Ray::new(DVec3::new(0.25, 0.5, 4.0), DVec3::new(0.0, 0.0, 2.0)).unwrap();
+    assert!(hits_of(&patch, &away).is_empty());
+}
+
+#[test]
+fn two_hits_sorted_by_t() {
+    // A bowl z = (x−½)² + (y−½)²-like biquadratic hit twice by a horizontal ray.
+    let mut pts = Vec::new();
+    for i in 0..=2 {
+        for j in 0..=2 {
+            let z = if i == 1 || j == 1 { -1.0 } else { 1.0 };
+            pts.push(DVec3::new(i as f64 / 2.0, j as f64 / 2.0, z));
+        }
+    }
+    let patch: Patch = TensorPatch::new(2, 2, pts, None).unwrap().into();
+    let ray = Ray::new(DVec3::new(-1.0, 0.5, 0.0), DVec3::new(1.0, 0.01, 0.0)).unwrap();
+    let hits = hits_of(&patch, &ray);
+    check_hits(&patch, &ray, &hits);
+    assert_eq!(hits.iter().filter(|h| h.certified).count(), 2, "{hits:?}");
+    assert!(hits[0].t < hits[1].t);
+}
+
+#[test]
+fn ray_in_the_plane_of_a_planar_patch_is_degenerate() {
+    let mut pts = Vec::new();
+    for j in 0..=2 {
+        for i in 0..=2 - j {
+            pts.push(DVec3::new(i as f64 / 2.0, j as f64 / 2.0, 0.0));
+        }
+    }
+    let patch: Patch = TriPatch::new(2, pts, None).unwrap().into();
+    let inside = Ray::new(DVec3::new(-1.0, 0.25, 0.0), DVec3::new(1.0, 0.1, 0.0)).unwrap();
+    let out = intersect(&patch, &inside, &default_options()).unwrap();
+    assert_eq!(out, RayOutcome::Degenerate(Degeneracy::ZeroEquation));
+    // In the plane but missing the patch: still no false "no hits"; either
+    // degenerate or (proven) empty.
+    let miss = Ray::new(DVec3::new(-1.0, 5.0, 0.0), DVec3::new(1.0, 0.0, 0.0)).unwrap();
+    match intersect(&patch, &miss, &default_options()).unwrap() {
+        RayOutcome::Hits(h) => assert!(h.complete && h.hits.is_empty()),
+        RayOutcome::Degenerate(_) => {}
+    }
+}
+
+#[test]
+fn ray_along_a_ruling_is_not_no_hits() {
+    // The hyperbolic paraboloid z = (x − ½)(y − ½)·4 contains the line y = ½, z = 0.
+    let pts = vec![
+        DVec3::new(0.0, 0.0, 1.0),
+        DVec3::new(0.0, 1.0, -1.0),
+        DVec3::new(1.0, 0.0, -1.0),
+        DVec3::new(1.0, 1.0, 1.0),
+    ];
+    let patch: Patch = TensorPatch::new(1, 1, pts, None).unwrap().into();
+    let ray = Ray::new(DVec3::new(-1.0, 0.5, 0.0), DVec3::new(1.0, 0.0, 0.0)).unwrap();
+    match intersect(&patch, &ray, &default_options()).unwrap() {
+        RayOutcome::Hits(h) => assert!(!h.hits.is_empty(), "a curve of hits reported as none"),
+        RayOutcome::Degenerate(_) => {}
+    }
+}
+
+#[test]
+fn bad_input_is_a_typed_error() {
+    let p3 = vec![DVec3::ZERO, DVec3::X, DVec3::Y];
+    assert!(matches!(
+        TriPatch::new(1, vec![DVec3::ZERO, DVec3::X], None),
+        Err(Error::Shape(_))
+    ));
+    assert!(matches!(
+        TriPatch::new(0, vec![DVec3::ZERO], None),
+        Err(Error::Shape(_))
+    ));
+    assert!(matches!(
+        TriPatch::new(1, vec![DVec3::ZERO, DVec3::X, DVec3::NAN], None),
+        Err(Error::NonFinite(_))
+    ));
+    assert!(matches!(
+        TriPatch::new(1, p3.clone(), Some(vec![1.0, 0.0, 1.0])),
+        Err(Error::Degenerate(_))
+    ));
+    assert!(matches!(
+        TriPatch::new(1, p3.clone(), Some(vec![1.0, 1.0])),
+        Err(Error::Shape(_))
+    ));
+    assert!(matches!(
+        TriPatch::new(1, p3, Some(vec![1.0, f64::INFINITY, 1.0])),
+        Err(Error::NonFinite(_))
+    ));
+    assert!(matches!(
+        TensorPatch::new(1, 1, vec![DVec3::ZERO; 3], None),
+        Err(Error::Shape(_))
+    ));
+    assert!(matches!(Ray::new(DVec3::ZERO, DVec3::ZERO), Err(Error::Degenerate(_))));
+    assert!(matches!(
+        Ray::new(DVec3::ZERO, DVec3::new(f64::NAN, 0.0, 1.0)),
+        Err(Error::NonFinite(_))
+    ));
+    assert!(matches!(Ray::new(DVec3::INFINITY, DVec3::X), Err(Error::NonFinite(_))));
+}
+
+#[test]
+fn tiny_and_huge_directions_give_the_same_hit() {
+    let pts = vec![
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(1.0, 0.0, 0.3),
+        DVec3::new(0.0, 1.0, -0.2),
+    ];
+    let patch: Patch = TriPatch::new(1, pts, None).unwrap().into();
+    for s in [1e-200, 1e-3, 1.0, 1e3, 1e200] {
+        let ray = Ray::new(DVec3::new(0.2, 0.3, 3.0), DVec3::new(0.01, -0.02, -1.0) * s).unwrap();
+        let hits = hits_of(&patch, &ray);
+        assert_eq!(hits.len(), 1, "scale {s}");
+        let h = &hits[0];
+        assert!(h.certified);
+        let q = surface(&patch, h.u, h.v);
+        // |d|² overflows or underflows at these scales: divide twice by |d|.
+        let big = ray.dir().abs().max_element();
+        let len = big * (ray.dir() / big).length();
+        let t = (q - ray.origin()).dot(ray.dir() / len) / len;
+        assert!(
+            gap(h.bx.t, t) <= 1e-9 * t.abs(),
+            "scale {s}: t = {t:e}, box {:?}",
+            h.bx.t
+        );
+    }
+}
+
+#[test]
+fn cli_json_and_errors() {
+    let dir = std::env::temp_dir().join(format!("rootclip_ray_cli_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let patch = dir.join("patch.json");
+    std::fs::write(
+        &patch,
+        r#"{"type":"triangle","degree":1,"points":[[0,0,0],[1,0,0],[0,1,0]]}"#,
+    )
+    .unwrap();
+    let rays = dir.join("rays.txt");
+    std::fs::write(&rays, "# two rays\n0.25 0.5 1  0 0 -1\n5 5 1 0 0 -1\n").unwrap();
+    let args = cli::RayArgs {
+        patch: patch.display().to_string(),
+        rays: Some(rays.display().to_string()),
+        json: true,
+        ..Default::default()
+    };
+    let out: serde_json::Value = serde_json::from_str(&cli::run(&args).unwrap()).unwrap();
+    let list = out["rays"].as_array().unwrap();
+    assert_eq!(list.len(), 2);
+    assert_eq!(list[0]["hits"].as_array().unwrap().len(), 1);
+    assert_eq!(list[0]["hits"][0]["certified"], true);
+    assert_eq!(list[1]["complete"], true);
+    assert!(list[1]["hits"].as_array().unwrap().is_empty());
+    let single = cli::RayArgs {
+        origin: Some("0.25,0.5,1".into()),
+        dir: Some("0,0,-1".into()),
+        rays: None,
+        json: false,
+        nearest: true,
+        ..args.clone()
+    };
+    assert!(cli::run(&single).unwrap().starts_with("ray 0: 1 hit(s), complete"));
+    let both = cli::RayArgs {
+        origin: Some("0,0,0".into()),
+        dir: Some("0,0,1".into()),
+        ..args.clone()
+    };
+    assert!(matches!(cli::run(&both), Err(Error::Shape(_))));
+    std::fs::write(&patch, r#"{"type":"tensor","degree":[1,1],"points":[[0,0,0]]}"#).unwrap();
+    assert!(matches!(cli::run(&args), Err(Error::Shape(_))));
+    std::fs::write(
+        &patch,
+        r#"{"type":"triangle","degree":1,"points":[[0,0,0],[1,0,0],[0,1,0]],"weights":[1,-1,1]}"#,
+    )
+    .unwrap();
+    assert!(matches!(cli::run(&args), Err(Error::Degenerate(_))));
+    std::fs::remove_dir_all(&dir).ok();
+}
