@@ -481,3 +481,26 @@ fn cli_json_and_errors() {
     assert!(matches!(cli::run(&args), Err(Error::Degenerate(_))));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Seed 000's Example 1 (fixture file): the simple hit at the paper's
+/// `(u, v)` (9 digits), and the tangential ray of its Example 3 reported as an
+/// undecided region around `(0.5, 0.5)`, never as a certified hit or none.
+#[test]
+fn seed000_example1_fixture() {
+    let text =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/seed000_example1.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let patch = cli::parse_patch(&v["patch"].to_string()).unwrap();
+    let vec3 =
+        |x: &serde_json::Value| DVec3::new(x[0].as_f64().unwrap(), x[1].as_f64().unwrap(), x[2].as_f64().unwrap());
+    for r in v["rays"].as_array().unwrap() {
+        let ray = Ray::new(vec3(&r["origin"]), vec3(&r["dir"])).unwrap();
+        let (pu, pv) = (r["paper_uv"][0].as_f64().unwrap(), r["paper_uv"][1].as_f64().unwrap());
+        let hits = hits_of(&patch, &ray);
+        check_hits(&patch, &ray, &hits);
+        assert_eq!(hits.len(), 1, "{hits:?}");
+        let h = &hits[0];
+        assert!(gap(h.bx.u, pu) <= 1e-9 && gap(h.bx.v, pv) <= 1e-9, "{h:?}");
+        assert_eq!(h.certified, r["kind"] == "simple");
+    }
+}
