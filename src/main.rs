@@ -87,7 +87,7 @@ enum Command {
         #[arg(long, value_enum, default_value = "hc")]
         method: MethodArg,
         /// Refine tri-boxes until their diameter is below this.
-        #[arg(long, default_value_t = 1e-12)]
+        #[arg(long, default_value_t = 1e-12, allow_negative_numbers = true)]
         eps: f64,
         /// Budget: tri-boxes per triangle.
         #[arg(long, default_value_t = 200_000)]
