@@ -16,7 +16,7 @@
 //! * [`rational_to_interval`]: the *tightest* interval with `f64` endpoints
 //!   containing a rational. A rational that is not a float (such as 1/10) becomes
 //!   an interval of width one ulp, never a point.
-//! * [`rational_to_f64`]: round-to-nearest.
+//! * [`rational_to_f64`] rounds to nearest.
 
 use inari::Interval;
 use num_bigint::BigInt;
