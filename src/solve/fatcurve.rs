@@ -31,7 +31,7 @@
 
 use super::num::Num;
 use crate::poly::TriBezier;
-use crate::scalar::Sign;
+use crate::scalar::{Kernel, Sign};
 
 /// `a0 + a1 s + a2 t`.
 #[derive(Clone, Copy, Debug)]
@@ -170,16 +170,32 @@ impl Bounds {
         self.mins[2] = self.mins[2].min(w.lower());
     }
 
-    fn finish(self) -> ClipBounds {
+    fn finish(self, kernel: Kernel) -> ClipBounds {
         if !self.any {
             return ClipBounds::Empty;
         }
         let m = self.mins.map(|x| if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) });
-        if m[0] + m[1] + m[2] > 1.0 {
-            ClipBounds::Empty
-        } else {
-            ClipBounds::Keep(m)
-        }
+        keep_or_empty(m, kernel)
+    }
+}
+
+/// `Keep(m)`, or `Empty` when the bounds are inconsistent (`Σ m > 1`: no point
+/// satisfies all three). Rigorous minima are lower bounds, so `Σ m > 1` is a
+/// proof; float minima of a converged region can exceed 1 by rounding, so the
+/// float kernel needs a margin before it calls the region empty.
+fn keep_or_empty(m: [f64; 3], kernel: Kernel) -> ClipBounds {
+    let margin = if kernel.is_rigorous() { 0.0 } else { 1e-9 };
+    // Float minima are estimates, not lower bounds: back them off a little so
+    // the float iteration does not cut an ulp past the root it converges to.
+    let m = m.map(|x| (x - margin).max(0.0));
+    let sum = m[0] + m[1] + m[2];
+    if sum > 1.0 + margin {
+        ClipBounds::Empty
+    } else if sum > 1.0 {
+        let scale = 1.0 / sum;
+        ClipBounds::Keep(m.map(|x| x * scale))
+    } else {
+        ClipBounds::Keep(m)
     }
 }
 
@@ -249,7 +265,7 @@ pub fn clip_against_fat_curves<S: Num>(fats: &[Fat<S>]) -> ClipBounds {
     for [a, b] in &centres {
         push(&line_line(a, b));
     }
-    bounds.finish()
+    bounds.finish(S::KERNEL)
 }
 
 /// Whether `a0 + a1 s + a2 t = 0` can meet the unit square `[0, 1]²` (the
@@ -421,23 +437,14 @@ pub fn bezier_bounds<S: Num>(f: &TriBezier<S>) -> ClipBounds {
         }
     }
     let m = mins.map(|x| if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) });
-    if m[0] + m[1] + m[2] > 1.0 {
-        ClipBounds::Empty
-    } else {
-        ClipBounds::Keep(m)
-    }
+    keep_or_empty(m, S::KERNEL)
 }
 
 /// Combines bounds that must hold together (both equations vanish at a root).
-pub fn intersect_bounds(a: ClipBounds, b: ClipBounds) -> ClipBounds {
+pub fn intersect_bounds(a: ClipBounds, b: ClipBounds, kernel: Kernel) -> ClipBounds {
     match (a, b) {
         (ClipBounds::Keep(x), ClipBounds::Keep(y)) => {
-            let m = [x[0].max(y[0]), x[1].max(y[1]), x[2].max(y[2])];
-            if m[0] + m[1] + m[2] > 1.0 {
-                ClipBounds::Empty
-            } else {
-                ClipBounds::Keep(m)
-            }
+            keep_or_empty([x[0].max(y[0]), x[1].max(y[1]), x[2].max(y[2])], kernel)
         }
         _ => ClipBounds::Empty,
     }

@@ -70,6 +70,14 @@ pub fn fat_curve<S: Num>(f: &TriBezier<S>, k: usize) -> Fat<S> {
             .fold(0.0, f64::max);
         (pts.elevate_cached(k), d)
     };
+    // The float kernel has no enclosures: give its fat curves the slack of a
+    // few rounding errors on the coefficient scale, or points on a curve
+    // (δ = 0 for an exact low-degree equation) test as outside it.
+    let delta = if S::KERNEL.is_rigorous() {
+        delta
+    } else {
+        delta + 1e-12 * f.coeffs().iter().map(|c| c.mag()).fold(0.0, f64::max)
+    };
     match k {
         1 => Fat::Line(Linear::from_bb(&approx), delta),
         _ => Fat::Conic(Quadratic::from_bb(&approx), delta),
@@ -229,7 +237,7 @@ fn strip_width<S: Num>(fat: &Fat<S>) -> f64 {
 /// its own barycentric coordinates (for `Hc`).
 pub fn clip_bounds<S: Num>(method: Method, fa: &TriBezier<S>, fb: &TriBezier<S>, incenter: [f64; 3]) -> ClipBounds {
     match method {
-        Method::Bezier => intersect_bounds(bezier_bounds(fa), bezier_bounds(fb)),
+        Method::Bezier => intersect_bounds(bezier_bounds(fa), bezier_bounds(fb), S::KERNEL),
         Method::Linear => clip_against_fat_curves(&[fat_curve(fa, 1), fat_curve(fb, 1)]),
         Method::HcNoPre => clip_against_fat_curves(&[fat_curve(fa, 1), fat_curve(fb, 2)]),
         Method::Hc => {

@@ -80,4 +80,13 @@ impl Num for f64 {
         // A float cannot hold a range; the midpoint is the f64 proposal.
         0.5 * (self + other)
     }
+    // A candidate computed on a constraint curve evaluates to that curve's
+    // level up to rounding: without an enclosure, compare with a relative
+    // tolerance, or boundary points (all the critical points) are lost.
+    fn possibly_le(self, x: f64) -> bool {
+        self <= x + 1e-9 * (self.abs() + x.abs()) + f64::MIN_POSITIVE
+    }
+    fn possibly_ge(self, x: f64) -> bool {
+        self >= x - 1e-9 * (self.abs() + x.abs()) - f64::MIN_POSITIVE
+    }
 }

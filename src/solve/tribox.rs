@@ -138,7 +138,7 @@ impl TriBox {
         // (λ − ρ)·r (r the inradius), which must cover the corners' uncertainty.
         // Unlike pushing K's own corners apart, this works even when K is below
         // float resolution (its corners round to one point).
-        let rho = 1.0 - (mins[0] + mins[1] + mins[2]);
+        let rho = (1.0 - (mins[0] + mins[1] + mins[2])).max(0.0);
         let centre = |pts: &[[f64; 2]]| {
             let n = pts.len() as f64;
             [
