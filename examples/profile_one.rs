@@ -14,6 +14,24 @@ fn main() {
         .unwrap()
         .to_triangle(3)
         .map(Interval::from_rational);
+    if arg == "f64" {
+        for ex in rootclip::repro::examples().unwrap() {
+            let n = ex.f.total_degree().max(ex.g.total_degree()) as usize;
+            let (ff, gf) = (
+                ex.f.to_triangle(n).map(f64::from_rational),
+                ex.g.to_triangle(n).map(f64::from_rational),
+            );
+            for m in Method::ALL {
+                let o = SolveOptions {
+                    method: m,
+                    ..SolveOptions::default()
+                };
+                let pts = rootclip::solve::solve_triangle_f64(&ff, &gf, &o);
+                println!("example {} {m}: {} leaves {:?}", ex.name, pts.len(), pts.first());
+            }
+        }
+        return;
+    }
     if arg == "stats" {
         let limits = Limits {
             method: Method::Hc,
