@@ -19,7 +19,9 @@
 
 use super::l2;
 use crate::error::{Error, Result};
-use crate::scalar::{MatrixKey, Scalar};
+use crate::scalar::{
+    cached_endpoints, endpoints_of, from_endpoints, store_endpoints, Arith, Endpoints, MatrixKey, Scalar,
+};
 
 /// A triangular Bernstein–Bézier polynomial of total degree `n`.
 #[derive(Clone, Debug, PartialEq)]
@@ -118,9 +120,15 @@ impl<S: Scalar> TriBezier<S> {
     /// triangle, so the f64 kernel is backward stable there; the interval
     /// kernel encloses the exact value for every member of `b`.
     pub fn eval_bary(&self, b: &Bary<S>) -> S {
+        if let Some((mut net, p)) = endpoints_of(&self.coeffs).zip(bary_endpoints(b)) {
+            for m in (1..=self.degree).rev() {
+                step(&mut net, m, &p);
+            }
+            return from_endpoints(&net[..1]).swap_remove(0);
+        }
         let mut net = self.coeffs.clone();
         for m in (1..=self.degree).rev() {
-            de_casteljau_step(&mut net, m, b);
+            step(&mut net, m, b);
         }
         net.swap_remove(0)
     }
@@ -150,25 +158,14 @@ impl<S: Scalar> TriBezier<S> {
     /// degenerate (then the result is constant along the collapsed direction).
     pub fn subdivide(&self, verts: &[Bary<S>; 3]) -> Self {
         let n = self.degree;
-        let mut out = vec![S::zero(); tri_len(n)];
-        let mut a = self.coeffs.clone(); // A_r = r steps at V1, degree n − r
-        for r in 0..=n {
-            if r > 0 {
-                de_casteljau_step(&mut a, n - r + 1, &verts[0]);
+        let coeffs = match endpoints_of(&self.coeffs).zip(endpoints_of(verts.as_flattened())) {
+            Some((f, v)) => {
+                let verts = [[v[0], v[1], v[2]], [v[3], v[4], v[5]], [v[6], v[7], v[8]]];
+                from_endpoints(&subdivide_net(&f, n, &verts))
             }
-            let mut b = a.clone(); // B_s = s steps at V2 of A_r
-            for s in 0..=n - r {
-                if s > 0 {
-                    de_casteljau_step(&mut b, n - r - s + 1, &verts[1]);
-                }
-                let mut c = b.clone();
-                for m in (1..=n - r - s).rev() {
-                    de_casteljau_step(&mut c, m, &verts[2]);
-                }
-                out[tri_index(n, r, s)] = c.swap_remove(0);
-            }
-        }
-        Self { degree: n, coeffs: out }
+            None => subdivide_net(&self.coeffs, n, verts),
+        };
+        Self { degree: n, coeffs }
     }
 
     /// The four sub-triangles of the 1-to-4 midpoint split (Liu et al. 2016,
@@ -250,7 +247,7 @@ impl<S: Scalar> TriBezier<S> {
     ///
     /// The normalized L2 norm (Eq. (10)) is invariant under affine maps, so the
     /// projection is one matrix per `(n, k)` — `G_kk⁻¹ G_kn` from exact Gram
-    /// matrices of the Bernstein bases (see [`l2`](super::l2)) — computed once in
+    /// matrices of the Bernstein bases (see [`l2`]) — computed once in
     /// rationals and cached per kernel.
     ///
     /// Exact in the rational kernel (and then `δ = 0` iff `f` has degree ≤ `k`).
@@ -261,13 +258,26 @@ impl<S: Scalar> TriBezier<S> {
         if k >= n {
             return Err(Error::Shape(format!("L2 reduction needs k < n, got k = {k}, n = {n}")));
         }
-        let mat = S::cached_matrix(MatrixKey::TriReduce(n, k), || l2::tri_reduction_exact(n, k));
+        let (reduce, elevate) = (MatrixKey::TriReduce(n, k), MatrixKey::TriElevate(k, n));
+        let build_reduce = || l2::tri_reduction_exact(n, k);
+        let build_elevate = || l2::tri_elevation_exact(k, n);
+        let (approx, delta) = match endpoints_of(&self.coeffs) {
+            Some(f) => {
+                let red = cached_endpoints(reduce, build_reduce);
+                let elev = cached_endpoints(elevate, build_elevate);
+                let (approx, delta) = reduce_net(&f, &red, &elev, k);
+                (from_endpoints(&approx), from_endpoints(&[delta]).swap_remove(0))
+            }
+            None => {
+                let red = S::cached_matrix(reduce, build_reduce);
+                let elev = S::cached_matrix(elevate, build_elevate);
+                reduce_net(&self.coeffs, &red, &elev, k)
+            }
+        };
         let approx = Self {
             degree: k,
-            coeffs: mat_vec(&mat, &self.coeffs, tri_len(k)),
+            coeffs: approx,
         };
-        let approx = approx.map(S::to_point);
-        let delta = max_abs_diff(&self.coeffs, &approx.elevate_cached(n).coeffs);
         Ok(TriReduction { approx, delta })
     }
 
@@ -278,11 +288,13 @@ impl<S: Scalar> TriBezier<S> {
         if m <= n {
             return self.clone();
         }
-        let mat = S::cached_matrix(MatrixKey::TriElevate(n, m), || l2::tri_elevation_exact(n, m));
-        Self {
-            degree: m,
-            coeffs: mat_vec(&mat, &self.coeffs, tri_len(m)),
-        }
+        let key = MatrixKey::TriElevate(n, m);
+        let build = || l2::tri_elevation_exact(n, m);
+        let coeffs = match endpoints_of(&self.coeffs) {
+            Some(f) => from_endpoints(&mat_vec(&cached_endpoints(key, build), &f, tri_len(m))),
+            None => mat_vec(&S::cached_matrix(key, build), &self.coeffs, tri_len(m)),
+        };
+        Self { degree: m, coeffs }
     }
 
     /// The product `f·g` of degree `m + n`:
@@ -290,20 +302,13 @@ impl<S: Scalar> TriBezier<S> {
     /// Exact in rationals; an enclosure with intervals.
     pub fn mul(&self, other: &Self) -> Self {
         let (m, n) = (self.degree, other.degree);
-        let w = S::cached_matrix(MatrixKey::TriProduct(m, n), || l2::tri_product_weights(m, n));
-        let mut out = vec![S::zero(); tri_len(m + n)];
-        let cols = tri_len(n);
-        for (a, (a0, a1, _)) in tri_indices(m).enumerate() {
-            for (b, (b0, b1, _)) in tri_indices(n).enumerate() {
-                let term = w[a * cols + b].clone() * self.coeffs[a].clone() * other.coeffs[b].clone();
-                let g = tri_index(m + n, a0 + b0, a1 + b1);
-                out[g] = out[g].clone() + term;
-            }
-        }
-        Self {
-            degree: m + n,
-            coeffs: out,
-        }
+        let key = MatrixKey::TriProduct(m, n);
+        let build = || l2::tri_product_weights(m, n);
+        let coeffs = match endpoints_of(&self.coeffs).zip(endpoints_of(&other.coeffs)) {
+            Some((f, g)) => from_endpoints(&mul_net(m, n, &cached_endpoints(key, build), &f, &g)),
+            None => mul_net(m, n, &S::cached_matrix(key, build), &self.coeffs, &other.coeffs),
+        };
+        Self { degree: m + n, coeffs }
     }
 
     /// `f + g`, elevating the lower degree first.
@@ -353,38 +358,445 @@ pub fn split4_vertices<S: Scalar>() -> [[Bary<S>; 3]; 4] {
 /// One de Casteljau step in place: the net of degree `m` (first `tri_len(m)`
 /// entries) becomes the net of degree `m − 1` at barycentric point `p`:
 /// `c'_ijk = p_u c_{i+1,j,k} + p_v c_{i,j+1,k} + p_w c_{i,j,k+1}`.
+/// Afterwards `net.len() == tri_len(m − 1)`.
 pub fn de_casteljau_step<S: Scalar>(net: &mut Vec<S>, m: usize, p: &Bary<S>) {
     debug_assert!(m >= 1 && net.len() >= tri_len(m));
-    let mut next = Vec::with_capacity(tri_len(m - 1));
-    for j in 0..m {
-        for i in 0..m - j {
-            let c = p[0].clone() * net[tri_index(m, i + 1, j)].clone()
-                + p[1].clone() * net[tri_index(m, i, j + 1)].clone()
-                + p[2].clone() * net[tri_index(m, i, j)].clone();
-            next.push(c);
-        }
+    if let Some((mut e, p)) = endpoints_of(&net[..tri_len(m)]).zip(bary_endpoints(p)) {
+        step(&mut e, m, &p);
+        net.truncate(e.len());
+        store_endpoints(net, &e);
+    } else {
+        step(net, m, p);
     }
-    *net = next;
 }
 
-/// Row-major matrix (`rows × v.len()`) times vector.
-pub(crate) fn mat_vec<S: Scalar>(mat: &[S], v: &[S], rows: usize) -> Vec<S> {
+// The kernels below are written once over `Arith`: a kernel's own values, or
+// bare interval endpoints (`Endpoints`) when the kernel is `Interval` — same
+// operations in the same order, same results, without inari's per-operation
+// rounding-mode switches (see `crate::scalar`, "Speed of the interval kernel").
+// The public methods above pick the representation.
+
+fn bary_endpoints<S: Scalar>(p: &Bary<S>) -> Option<Bary<Endpoints>> {
+    endpoints_of(p).map(|e| [e[0], e[1], e[2]])
+}
+
+/// [`de_casteljau_step`] on any working representation.
+fn step<W: Arith>(net: &mut Vec<W>, m: usize, p: &[W; 3]) {
+    // Range checks once per step instead of once per operation (products of
+    // two vetted values, sums of three products).
+    if W::in_fast_range(p, 480) && W::in_fast_range(&net[..tri_len(m)], 480) {
+        step_with(net, m, p, W::product_unchecked, W::add_product_unchecked);
+    } else {
+        step_with(net, m, p, W::product, W::add_product);
+    }
+}
+
+fn step_with<W: Arith>(
+    net: &mut Vec<W>,
+    m: usize,
+    p: &[W; 3],
+    product: impl Fn(&W, &W) -> W,
+    add_product: impl Fn(W, &W, &W) -> W,
+) {
+    let [pu, pv, pw] = p;
+    // The new coefficient (i, j) goes to tri_index(m − 1, i, j) =
+    // tri_index(m, i, j) − j: at or before the three old entries it reads, and
+    // before everything later coefficients read. So the old net can be
+    // overwritten in storage order, and no allocation is needed.
+    let mut out = 0;
+    let mut row = 0; // tri_index(m, 0, j)
+    for j in 0..m {
+        let next_row = row + m + 1 - j; // tri_index(m, 0, j + 1)
+        for i in 0..m - j {
+            let c = product(pu, &net[row + i + 1]);
+            let c = add_product(c, pv, &net[next_row + i]);
+            net[out] = add_product(c, pw, &net[row + i]);
+            out += 1;
+        }
+        row = next_row;
+    }
+    net.truncate(out);
+}
+
+/// [`TriBezier::subdivide`]: `g_rs = f[V1^r, V2^s, V3^(n−r−s)]`.
+fn subdivide_net<W: Arith>(coeffs: &[W], n: usize, verts: &[[W; 3]; 3]) -> Vec<W> {
+    let [v1, v2, v3] = verts;
+    let mut out = vec![W::zero_value(); tri_len(n)];
+    // Three nets, allocated once and stepped in place: A_r = r steps at V1
+    // (degree n − r), B_s = s steps at V2 of A_r, and the scratch copy of B_s
+    // that is evaluated at V3.
+    let mut a = coeffs.to_vec();
+    let mut b = Vec::with_capacity(tri_len(n));
+    let mut c = Vec::with_capacity(tri_len(n));
+    for r in 0..=n {
+        if r > 0 {
+            step(&mut a, n - r + 1, v1);
+        }
+        b.clone_from(&a);
+        for s in 0..=n - r {
+            if s > 0 {
+                step(&mut b, n - r - s + 1, v2);
+            }
+            let g = if s == n - r {
+                b[0].clone()
+            } else {
+                c.clone_from(&b);
+                for m in (1..=n - r - s).rev() {
+                    step(&mut c, m, v3);
+                }
+                c[0].clone()
+            };
+            out[tri_index(n, r, s)] = g;
+        }
+    }
+    out
+}
+
+/// [`TriBezier::reduce_l2`]: the approximant (rounded to points) and `δ`.
+fn reduce_net<W: Arith>(f: &[W], reduce: &[W], elevate: &[W], k: usize) -> (Vec<W>, W) {
+    let approx: Vec<W> = mat_vec(reduce, f, tri_len(k)).iter().map(W::point_of).collect();
+    let delta = max_abs_diff(f, &mat_vec(elevate, &approx, f.len()));
+    (approx, delta)
+}
+
+/// [`TriBezier::mul`] with product weights `w` (`tri_len(m) × tri_len(n)`).
+fn mul_net<W: Arith>(m: usize, n: usize, w: &[W], f: &[W], g: &[W]) -> Vec<W> {
+    // Each term multiplies three values, hence the narrower range.
+    let vetted = |v: &[W]| W::in_fast_range(v, 320);
+    if vetted(f) && vetted(g) && vetted(w) {
+        mul_net_with((m, n), (w, f, g), W::product_unchecked, W::add_product_unchecked)
+    } else {
+        mul_net_with((m, n), (w, f, g), W::product, W::add_product)
+    }
+}
+
+fn mul_net_with<W: Arith>(
+    (m, n): (usize, usize),
+    (w, f, g): (&[W], &[W], &[W]),
+    product: impl Fn(&W, &W) -> W,
+    add_product: impl Fn(W, &W, &W) -> W,
+) -> Vec<W> {
+    let mut out = vec![W::zero_value(); tri_len(m + n)];
+    // α runs over f's coefficients and β over g's, both in storage order; each
+    // term is (w_αβ · f_α) · g_β, added into (fg)_{α+β}.
+    let mut alpha = 0;
+    for ja in 0..=m {
+        for ia in 0..=m - ja {
+            let weights = &w[alpha * g.len()..(alpha + 1) * g.len()];
+            let mut beta = 0;
+            for jb in 0..=n {
+                let target_row = tri_index(m + n, 0, ja + jb) + ia;
+                for ib in 0..=n - jb {
+                    let wf = product(&weights[beta], &f[alpha]);
+                    let t = target_row + ib;
+                    out[t] = add_product(out[t].clone(), &wf, &g[beta]);
+                    beta += 1;
+                }
+            }
+            alpha += 1;
+        }
+    }
+    out
+}
+
+/// Row-major matrix (`rows × v.len()`) times vector; each entry is the sum
+/// `0 + m_r0 v_0 + m_r1 v_1 + …` accumulated left to right.
+pub(crate) fn mat_vec<W: Arith>(mat: &[W], v: &[W], rows: usize) -> Vec<W> {
+    debug_assert_eq!(mat.len(), rows * v.len());
+    // Range checks once per call instead of once per operation.
+    if W::in_fast_range(v, 480) && W::in_fast_range(mat, 480) {
+        mat_vec_with(mat, v, rows, W::add_product_unchecked)
+    } else {
+        mat_vec_with(mat, v, rows, W::add_product)
+    }
+}
+
+fn mat_vec_with<W: Arith>(mat: &[W], v: &[W], rows: usize, add_product: impl Fn(W, &W, &W) -> W) -> Vec<W> {
     let cols = v.len();
-    debug_assert_eq!(mat.len(), rows * cols);
-    (0..rows)
-        .map(|r| {
-            let row = &mat[r * cols..(r + 1) * cols];
+    let mut out = Vec::with_capacity(rows);
+    // Four rows at a time: each row is still summed in order (same result),
+    // but four independent sums keep the FPU busy while each one waits for its
+    // previous term (a long wait with rigorous rounding).
+    let mut blocks = mat.chunks_exact(4 * cols.max(1));
+    for block in blocks.by_ref() {
+        let (r0, rest) = block.split_at(cols);
+        let (r1, rest) = rest.split_at(cols);
+        let (r2, r3) = rest.split_at(cols);
+        let mut acc = [W::zero_value(), W::zero_value(), W::zero_value(), W::zero_value()];
+        for (c, x) in v.iter().enumerate() {
+            acc[0] = add_product(acc[0].clone(), &r0[c], x);
+            acc[1] = add_product(acc[1].clone(), &r1[c], x);
+            acc[2] = add_product(acc[2].clone(), &r2[c], x);
+            acc[3] = add_product(acc[3].clone(), &r3[c], x);
+        }
+        out.extend(acc);
+    }
+    for row in blocks.remainder().chunks_exact(cols.max(1)) {
+        out.push(
             row.iter()
                 .zip(v)
-                .fold(S::zero(), |acc, (a, b)| acc + a.clone() * b.clone())
-        })
-        .collect()
+                .fold(W::zero_value(), |acc, (a, b)| add_product(acc, a, b)),
+        );
+    }
+    out.resize(rows, W::zero_value()); // cols == 0: every entry is the empty sum
+    out
 }
 
 /// `max_i |a_i − b_i|` in the kernel's arithmetic (an upper bound for
 /// intervals: take `.upper()`).
-pub(crate) fn max_abs_diff<S: Scalar>(a: &[S], b: &[S]) -> S {
+pub(crate) fn max_abs_diff<W: Arith>(a: &[W], b: &[W]) -> W {
     a.iter()
         .zip(b)
-        .fold(S::zero(), |acc, (x, y)| S::max(acc, (x.clone() - y.clone()).abs()))
+        .fold(W::zero_value(), |acc, (x, y)| W::max_abs_diff_step(acc, x, y))
+}
+
+#[cfg(test)]
+mod tests {
+    //! The hot kernels are tuned (in place, scratch buffers, kernel hooks);
+    //! these tests hold them to the straightforward versions, bit for bit.
+    use super::*;
+    use crate::scalar::point;
+    use inari::Interval;
+    use num_rational::BigRational;
+
+    fn reference_step<S: Scalar>(net: &mut Vec<S>, m: usize, p: &Bary<S>) {
+        let mut next = Vec::with_capacity(tri_len(m - 1));
+        for j in 0..m {
+            for i in 0..m - j {
+                let c = p[0].clone() * net[tri_index(m, i + 1, j)].clone()
+                    + p[1].clone() * net[tri_index(m, i, j + 1)].clone()
+                    + p[2].clone() * net[tri_index(m, i, j)].clone();
+                next.push(c);
+            }
+        }
+        *net = next;
+    }
+
+    fn reference_subdivide<S: Scalar>(f: &TriBezier<S>, verts: &[Bary<S>; 3]) -> Vec<S> {
+        let n = f.degree();
+        let mut out = vec![S::zero(); tri_len(n)];
+        let mut a = f.coeffs().to_vec();
+        for r in 0..=n {
+            if r > 0 {
+                reference_step(&mut a, n - r + 1, &verts[0]);
+            }
+            let mut b = a.clone();
+            for s in 0..=n - r {
+                if s > 0 {
+                    reference_step(&mut b, n - r - s + 1, &verts[1]);
+                }
+                let mut c = b.clone();
+                for m in (1..=n - r - s).rev() {
+                    reference_step(&mut c, m, &verts[2]);
+                }
+                out[tri_index(n, r, s)] = c.swap_remove(0);
+            }
+        }
+        out
+    }
+
+    fn reference_mul<S: Scalar>(f: &TriBezier<S>, g: &TriBezier<S>) -> Vec<S> {
+        let (m, n) = (f.degree(), g.degree());
+        let w = l2::tri_product_weights(m, n);
+        let w: Vec<S> = w.iter().map(S::from_rational).collect();
+        let mut out = vec![S::zero(); tri_len(m + n)];
+        for (a, (a0, a1, _)) in tri_indices(m).enumerate() {
+            for (b, (b0, b1, _)) in tri_indices(n).enumerate() {
+                let term = w[a * tri_len(n) + b].clone() * f.coeffs()[a].clone() * g.coeffs()[b].clone();
+                let t = tri_index(m + n, a0 + b0, a1 + b1);
+                out[t] = out[t].clone() + term;
+            }
+        }
+        out
+    }
+
+    fn reference_reduce<S: Scalar>(f: &TriBezier<S>, k: usize) -> (Vec<S>, S) {
+        let n = f.degree();
+        let conv = |m: Vec<BigRational>| m.iter().map(S::from_rational).collect::<Vec<S>>();
+        let dot = |mat: &[S], v: &[S], rows: usize| -> Vec<S> {
+            (0..rows)
+                .map(|r| {
+                    let row = &mat[r * v.len()..(r + 1) * v.len()];
+                    row.iter()
+                        .zip(v)
+                        .fold(S::zero(), |acc, (a, b)| acc + a.clone() * b.clone())
+                })
+                .collect()
+        };
+        let red = conv(l2::tri_reduction_exact(n, k));
+        let approx: Vec<S> = dot(&red, f.coeffs(), tri_len(k)).iter().map(S::to_point).collect();
+        let up = dot(&conv(l2::tri_elevation_exact(k, n)), &approx, tri_len(n));
+        let delta = f
+            .coeffs()
+            .iter()
+            .zip(&up)
+            .fold(S::zero(), |acc, (x, y)| S::max(acc, (x.clone() - y.clone()).abs()));
+        (approx, delta)
+    }
+
+    /// Bitwise equality: `f64` bits, interval endpoint bits.
+    trait Bits {
+        fn bits(&self) -> Vec<u64>;
+    }
+    impl Bits for f64 {
+        fn bits(&self) -> Vec<u64> {
+            vec![self.to_bits()]
+        }
+    }
+    impl Bits for Interval {
+        fn bits(&self) -> Vec<u64> {
+            vec![self.inf().to_bits(), self.sup().to_bits()]
+        }
+    }
+    fn bits<S: Bits>(v: &[S]) -> Vec<u64> {
+        v.iter().flat_map(Bits::bits).collect()
+    }
+
+    fn pseudo_random(n: usize, seed: u64) -> TriBezier<f64> {
+        let mut x = seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1;
+        TriBezier::from_fn(n, |_, _, _| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            ((x >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 3.0
+        })
+    }
+
+    /// Interior, extrapolating, degenerate and split-4 sub-triangles.
+    fn vertex_sets() -> Vec<[Bary<f64>; 3]> {
+        let mut v = vec![
+            [[0.6, 0.3, 0.1], [0.2, 0.7, 0.1], [0.25, 0.25, 0.5]],
+            [[1.3, -0.2, -0.1], [-0.4, 1.1, 0.3], [0.1, 0.1, 0.8]],
+            [[0.5, 0.5, 0.0], [0.5, 0.5, 0.0], [0.0, 0.0, 1.0]],
+        ];
+        v.extend(split4_vertices::<f64>());
+        v
+    }
+
+    fn widen(x: f64) -> Interval {
+        // Half the intervals are points, half have width (the solver's case).
+        if x.to_bits() % 2 == 0 {
+            point(x)
+        } else {
+            crate::scalar::interval(x.next_down(), x.next_up().next_up())
+        }
+    }
+
+    #[test]
+    fn subdivide_matches_reference_bitwise() {
+        for n in 0..=7 {
+            let f = pseudo_random(n, n as u64 + 1);
+            let fi = f.map(|&c| widen(c));
+            for verts in vertex_sets() {
+                assert_eq!(
+                    bits(f.subdivide(&verts).coeffs()),
+                    bits(&reference_subdivide(&f, &verts))
+                );
+                let vi = verts.map(|v| v.map(widen));
+                assert_eq!(bits(fi.subdivide(&vi).coeffs()), bits(&reference_subdivide(&fi, &vi)));
+            }
+        }
+        let q = |x: f64| BigRational::from_float(x).unwrap();
+        let f = pseudo_random(4, 9).map(|&c| q(c));
+        let verts = vertex_sets()[1].map(|v| v.map(q));
+        assert_eq!(f.subdivide(&verts).coeffs(), &reference_subdivide(&f, &verts)[..]);
+    }
+
+    #[test]
+    fn step_truncates_like_the_allocating_version() {
+        let f = pseudo_random(5, 3);
+        let mut net = f.coeffs().to_vec();
+        net.extend([7.0, 8.0]); // a longer buffer than tri_len(5)
+        let mut net_i: Vec<Interval> = net.iter().map(|&c| widen(c)).collect();
+        let (mut reference, mut reference_i) = (net.clone(), net_i.clone());
+        let p = [0.2, 0.3, 0.5];
+        let p_i = p.map(widen);
+        for m in (1..=5).rev() {
+            de_casteljau_step(&mut net, m, &p);
+            reference_step(&mut reference, m, &p);
+            assert_eq!(bits(&net), bits(&reference));
+            de_casteljau_step(&mut net_i, m, &p_i);
+            reference_step(&mut reference_i, m, &p_i);
+            assert_eq!(bits(&net_i), bits(&reference_i));
+        }
+        assert_eq!((net.len(), net_i.len()), (1, 1));
+    }
+
+    #[test]
+    fn elevate_and_eval_match_reference_bitwise() {
+        for n in 0..=6 {
+            let f = pseudo_random(n, 41 + n as u64).map(|&c| widen(c));
+            let conv: Vec<Interval> = l2::tri_elevation_exact(n, n + 3)
+                .iter()
+                .map(Scalar::from_rational)
+                .collect();
+            let reference: Vec<Interval> = (0..tri_len(n + 3))
+                .map(|r| {
+                    let row = &conv[r * tri_len(n)..(r + 1) * tri_len(n)];
+                    row.iter()
+                        .zip(f.coeffs())
+                        .fold(Interval::zero(), |acc, (a, b)| acc + *a * *b)
+                })
+                .collect();
+            assert_eq!(bits(f.elevate_cached(n + 3).coeffs()), bits(&reference));
+            let p = [0.3, 0.9, -0.2].map(widen);
+            let mut net = f.coeffs().to_vec();
+            for m in (1..=n).rev() {
+                reference_step(&mut net, m, &p);
+            }
+            assert_eq!(bits(&[f.eval_bary(&p)]), bits(&net));
+        }
+    }
+
+    #[test]
+    fn huge_tiny_and_unbounded_coefficients_fall_back_to_inari() {
+        // Outside the range where the error-free transformations are exact,
+        // operations go to inari; the results must still match bit for bit.
+        // 1e-110 passes the per-step and per-matrix vetting of two-factor
+        // products but not that of three-factor ones (`mul`).
+        let scales = [1.0e-200, 1.0e-110, 1.0e200, 1.0e305];
+        for (t, &scale) in scales.iter().enumerate() {
+            let f = pseudo_random(4, 51 + t as u64).map(|&c| widen(c * scale));
+            let verts = vertex_sets()[0].map(|v| v.map(widen));
+            assert_eq!(
+                bits(f.subdivide(&verts).coeffs()),
+                bits(&reference_subdivide(&f, &verts))
+            );
+            let (r, (ra, rd)) = (f.reduce_l2(2).unwrap(), reference_reduce(&f, 2));
+            assert_eq!(bits(r.approx.coeffs()), bits(&ra));
+            assert_eq!(bits(&[r.delta]), bits(&[rd]));
+            assert_eq!(bits(f.mul(&f).coeffs()), bits(&reference_mul(&f, &f)));
+        }
+        let mut coeffs = pseudo_random(2, 61).map(|&c| widen(c)).coeffs().to_vec();
+        coeffs[1] = Interval::ENTIRE;
+        let f = TriBezier::from_fn(2, |i, j, _| coeffs[tri_index(2, i, j)]);
+        let verts = vertex_sets()[1].map(|v| v.map(widen));
+        assert_eq!(
+            bits(f.subdivide(&verts).coeffs()),
+            bits(&reference_subdivide(&f, &verts))
+        );
+    }
+
+    #[test]
+    fn mul_and_reduce_match_reference_bitwise() {
+        for (m, n) in [(0, 2), (1, 1), (2, 3), (3, 3), (4, 2), (5, 4)] {
+            let (f, g) = (pseudo_random(m, 11 + m as u64), pseudo_random(n, 21 + n as u64));
+            assert_eq!(bits(f.mul(&g).coeffs()), bits(&reference_mul(&f, &g)));
+            let (fi, gi) = (f.map(|&c| widen(c)), g.map(|&c| widen(c)));
+            assert_eq!(bits(fi.mul(&gi).coeffs()), bits(&reference_mul(&fi, &gi)));
+        }
+        for n in 2..=7 {
+            let f = pseudo_random(n, 31 + n as u64);
+            let fi = f.map(|&c| widen(c));
+            for k in 1..n.min(4) {
+                let (r, ri) = (f.reduce_l2(k).unwrap(), fi.reduce_l2(k).unwrap());
+                let (ra, rd) = reference_reduce(&f, k);
+                let (ria, rid) = reference_reduce(&fi, k);
+                assert_eq!(bits(r.approx.coeffs()), bits(&ra));
+                assert_eq!(bits(&[r.delta]), bits(&[rd]));
+                assert_eq!(bits(ri.approx.coeffs()), bits(&ria));
+                assert_eq!(bits(&[ri.delta]), bits(&[rid]));
+            }
+        }
+    }
 }
