@@ -302,41 +302,7 @@ fn step<S: Num>(
         SplitRule::Halving => new_diam <= 0.5 * diam,
         SplitRule::PaperLiteral => mins.iter().sum::<f64>() > 0.5 * diam && new_diam < diam,
     };
-    if progressed && new_diam < EARLY_CERTIFY && limits.probe_below > 0.0 {
-        // A clip that converges: Krawczyk may already certify (or exclude) it;
-        // its contraction then converges quadratically without further clips.
-        out.counters.probes += 1;
-        match probe(&tb) {
-            Probe::Unique => {
-                let node = push_node(out, item.node, level, new_diam);
-                out.leaves.push(Leaf {
-                    tb,
-                    node,
-                    fa,
-                    fb,
-                    exact: item.exact,
-                });
-                return;
-            }
-            Probe::NoRoot => {
-                out.counters.probe_exclusions += 1;
-                return;
-            }
-            Probe::Undecided => {}
-        }
-    }
-    if progressed {
-        let node = push_node(out, item.node, level, new_diam);
-        stack.push(Leaf {
-            tb,
-            node,
-            fa,
-            fb,
-            exact: item.exact,
-        });
-        return;
-    }
-    if exact.is_some() && !item.exact && new_diam < EXACT_BELOW && S::KERNEL.is_rigorous() {
+    if !progressed && exact.is_some() && !item.exact && new_diam < EXACT_BELOW && S::KERNEL.is_rigorous() {
         // Stalled at the rounding floor: redo this tri-box from the exact input.
         out.counters.exact_restarts += 1;
         let (fa, fb) = restrict_pair(f, g, exact, true, &tb);
@@ -350,49 +316,50 @@ fn step<S: Num>(
         });
         return;
     }
-    if new_diam < limits.probe_below {
+    // Probes: a converging clip below EARLY_CERTIFY may already be certified
+    // (Krawczyk's contraction then converges quadratically without further
+    // clips); a stalled one below `probe_below` may be certified or excluded,
+    // and below SINGULAR_FLOOR it is not split further.
+    let probe_here = limits.probe_below > 0.0
+        && if progressed {
+            new_diam < EARLY_CERTIFY
+        } else {
+            new_diam < limits.probe_below
+        };
+    let verdict = if probe_here {
         out.counters.probes += 1;
-        match probe(&tb) {
-            Probe::NoRoot => {
-                out.counters.probe_exclusions += 1;
-                return;
-            }
-            Probe::Unique => {
-                let node = push_node(out, item.node, level, new_diam);
-                out.leaves.push(Leaf {
-                    tb,
-                    node,
-                    fa,
-                    fb,
-                    exact: item.exact,
-                });
-                return;
-            }
-            Probe::Undecided if new_diam < SINGULAR_FLOOR => {
-                let node = push_node(out, item.node, level, new_diam);
-                out.leaves.push(Leaf {
-                    tb,
-                    node,
-                    fa,
-                    fb,
-                    exact: item.exact,
-                });
-                return;
-            }
-            Probe::Undecided => {}
+        probe(&tb)
+    } else {
+        Probe::Undecided
+    };
+    let next = Leaf {
+        tb,
+        node: item.node,
+        fa,
+        fb,
+        exact: item.exact,
+    };
+    let stop_here = match verdict {
+        Probe::NoRoot => {
+            out.counters.probe_exclusions += 1;
+            return;
         }
-    }
-    let Some(kids) = tb.split4() else {
-        // Collapsed at the rounding floor: hand it to the certification phase.
-        let node = push_node(out, item.node, level, new_diam);
-        out.leaves.push(Leaf {
-            tb,
-            node,
-            fa,
-            fb,
-            exact: item.exact,
-        });
+        Probe::Unique => true,
+        Probe::Undecided => !progressed && probe_here && new_diam < SINGULAR_FLOOR,
+    };
+    if stop_here || progressed {
+        let leaf = at_level(out, next, level, new_diam);
+        if stop_here {
+            out.leaves.push(leaf);
+        } else {
+            stack.push(leaf);
+        }
         return;
+    }
+    let Some(kids) = next.tb.split4() else {
+        // Collapsed at the rounding floor: hand it to the certification phase.
+        let leaf = at_level(out, next, level, new_diam);
+        return out.leaves.push(leaf);
     };
     out.counters.splits += 1;
     // Push in reverse so the corner at V1 is processed first.
@@ -411,6 +378,12 @@ fn step<S: Num>(
             exact: item.exact,
         });
     }
+}
+
+/// `leaf` (whose `node` is its parent's) recorded in the trace as a child at `level`.
+fn at_level<S>(out: &mut Run<S>, mut leaf: Leaf<S>, level: usize, diam: f64) -> Leaf<S> {
+    leaf.node = push_node(out, leaf.node, level, diam);
+    leaf
 }
 
 fn push_node<S>(out: &mut Run<S>, parent: usize, level: usize, diam: f64) -> usize {
