@@ -27,7 +27,7 @@
 //! `oracles_reject_false_claims` and `dense_oracle_rejects_false_claims`
 //! show the oracles fail on planted false claims. Cases come from a fixed
 //! seed unless `PROPTEST_RNG_SEED` is set (see [`SEED`]). The
-//! `regression_*` tests are known solver bugs, ignored until fixed.
+//! `regression_*` tests pin solver bugs this suite found (all fixed).
 
 use num_bigint::BigInt;
 use num_rational::BigRational;
@@ -1415,7 +1415,6 @@ fn square_seam_and_corners() {
 /// `u ∈ [-3.1e-15, 3.1e-15], v ∈ [1 - 6.2e-15, 1 + 6.4e-15]` and
 /// `u ∈ [-4.4e-16, 5.6e-16], v ∈ [1 - 8e-16, 1 + 9e-16]`.
 #[test]
-#[ignore = "solver bug: one root certified twice at the square's seam corner (0, 1)"]
 fn regression_duplicate_root_on_square_seam() {
     let p = |s: &str| rootclip::parse_polynomial(s).expect("parses");
     let k = Known::new(
@@ -1445,7 +1444,6 @@ fn regression_duplicate_root_on_square_seam() {
 /// the `1e4` condition: the root is returned as a cluster of width `4e-15`.
 /// The close-pairs property requires roots `1e-4` apart to be certified.
 #[test]
-#[ignore = "solver bug: simple root at a vertex left in a 4e-15 cluster"]
 fn regression_simple_vertex_root_not_certified() {
     let p = |s: &str| rootclip::parse_polynomial(s).expect("parses");
     let k = Known::new(
@@ -1478,7 +1476,6 @@ fn regression_simple_vertex_root_not_certified() {
 /// leftovers for a system without roots. On the square, the same stall costs
 /// minutes (`u + v − 1` against `3u + 3v − 3000000003/1000000000`).
 #[test]
-#[ignore = "solver bug: lines parallel to u + v = 1 are never clipped; the budget runs out"]
 fn regression_parallel_to_hypotenuse_stalls() {
     let p = |s: &str| rootclip::parse_polynomial(s).expect("parses");
     let (f, g) = (p("u + v - 1/2"), p("u + v - 500001/1000000"));

@@ -372,6 +372,11 @@ fn line_conic<S: Num>(l: &Linear<S>, q: &Quadratic<S>) -> Vec<[S; 2]> {
 /// whole of `[0, 1]` is returned.
 pub fn quadratic_roots_in_unit<S: Num>(alpha: S, beta: S, gamma: S) -> Vec<S> {
     let unit = || S::pt(0.0).hull(S::pt(1.0));
+    // On [0, 1], |α x² + β x| ≤ |α| + |β|: a constant term beyond that has no
+    // root there. (Decides the nearly-constant case below without giving up.)
+    if (gamma.abs().lower()) > alpha.mag() + beta.mag() {
+        return Vec::new();
+    }
     let disc = beta * beta - S::pt(4.0) * alpha * gamma;
     let Some(sq) = disc.sqrt_nonneg() else {
         return Vec::new();

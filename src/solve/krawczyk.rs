@@ -111,13 +111,15 @@ impl System {
     /// (iterated `K` until it stops shrinking), which holds that root.
     pub fn certify(&self, x0: IBox) -> Verdict {
         let mut x = x0.map(|c| inflate(c, 0.1));
-        for _ in 0..6 {
+        for _ in 0..10 {
             match self.krawczyk(x) {
                 Verdict::Unique(k) => return Verdict::Unique(self.contract(k)),
                 Verdict::NoRoot => return Verdict::NoRoot,
                 Verdict::Undecided(k) => {
-                    // Grow around the hull of the candidate and the original box.
-                    x = [0, 1].map(|i| inflate(k[i].convex_hull(x0[i]), 0.5));
+                    // Grow around the hull of the candidate and the original box,
+                    // tripling: an ill-conditioned root (condition c) needs a box
+                    // about c times the rounding of F before K(X) fits inside.
+                    x = [0, 1].map(|i| inflate(k[i].convex_hull(x0[i]), 1.0));
                 }
             }
         }

@@ -475,8 +475,9 @@ fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &Solv
             bx: frame.map_box(x.bx),
             diameters: x.diameters,
         };
-        roots.extend(merge_roots(r, &local, &mut stats).into_iter().map(to_global));
-        clusters.extend(c.into_iter().map(to_global));
+        let (r, undecided) = merge_roots(r, &local, &mut stats);
+        roots.extend(r.into_iter().map(to_global));
+        clusters.extend(c.into_iter().chain(undecided).map(to_global));
         for leaf in &run.leftovers {
             let bx = frame.map_box(local_box(leaf));
             let triangle = leaf.tb.verts.map(|p| frame.map_point(p));
@@ -488,7 +489,8 @@ fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &Solv
     }
     // Across pieces (the square's diagonal), in the global frame: there the
     // first half's polynomials are evaluated next to their own triangle.
-    let roots = merge_roots(roots, global, &mut stats);
+    let (roots, undecided) = merge_roots(roots, global, &mut stats);
+    clusters.extend(undecided);
     let mut out_roots = Vec::new();
     for r in roots {
         match locate(r.bx, domain) {
@@ -640,24 +642,49 @@ fn hull(a: IBox, b: IBox) -> IBox {
 /// tri-box edge). If Krawczyk proves a unique root in their hull, they are one
 /// root; otherwise (rare) both stay, since each holds exactly one root but
 /// they might be different.
-fn merge_roots(mut found: Vec<Found>, global: &System, stats: &mut Stats) -> Vec<Found> {
+fn merge_roots(mut found: Vec<Found>, global: &System, stats: &mut Stats) -> (Vec<Found>, Vec<Found>) {
     let mut out: Vec<Found> = Vec::new();
+    let mut undecided: Vec<Found> = Vec::new();
     'next: while let Some(r) = found.pop() {
-        for o in out.iter_mut() {
-            if overlaps(o.bx, r.bx) {
-                stats.krawczyk_calls += 1;
-                if let Verdict::Unique(k) = global.certify(hull(o.bx, r.bx)) {
-                    o.bx = k;
-                    if r.diameters.len() > o.diameters.len() {
-                        o.diameters = r.diameters;
-                    }
+        for i in 0..out.len() {
+            let o = &out[i];
+            if !overlaps(o.bx, r.bx) {
+                continue;
+            }
+            stats.krawczyk_calls += 1;
+            if let Verdict::Unique(k) = global.certify(hull(o.bx, r.bx)) {
+                let o = &mut out[i];
+                o.bx = k;
+                if r.diameters.len() > o.diameters.len() {
+                    o.diameters = r.diameters;
+                }
+                continue 'next;
+            }
+            // Each box holds exactly one root. On their intersection (no
+            // inflation): one root there is both boxes' root; none means the
+            // two roots are distinct; otherwise neither claim can stand.
+            let meet = [o.bx[0].intersection(r.bx[0]), o.bx[1].intersection(r.bx[1])];
+            stats.krawczyk_calls += 1;
+            match global.krawczyk(meet) {
+                Verdict::Unique(_) => {
+                    let o = &mut out[i];
+                    o.bx = meet;
+                    continue 'next;
+                }
+                Verdict::NoRoot => {}
+                Verdict::Undecided(_) => {
+                    let o = out.swap_remove(i);
+                    undecided.push(Found {
+                        bx: hull(o.bx, r.bx),
+                        diameters: r.diameters,
+                    });
                     continue 'next;
                 }
             }
         }
         out.push(r);
     }
-    out
+    (out, undecided)
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
