@@ -383,6 +383,20 @@ fn opt<T: std::fmt::Display>(x: &Option<T>) -> String {
     x.as_ref().map_or("-".to_string(), |v| v.to_string())
 }
 
+/// The paper's table for an example: recursion counts (Tables 1, 3, 5) or
+/// diameters by level (Tables 2, 4, 6).
+fn table_title(example: &str, diameters: bool) -> String {
+    let number = match example {
+        "1" => 1,
+        "2" => 3,
+        _ => 5,
+    } + usize::from(diameters);
+    match example.strip_prefix("3k") {
+        Some(k) => format!("Table {number}, k = {k}"),
+        None => format!("Table {number}"),
+    }
+}
+
 fn tables_cmd(json: bool, split: SplitArg) -> Result<String, Error> {
     use rootclip::repro;
     let rule = match split {
@@ -403,14 +417,8 @@ fn tables_cmd(json: bool, split: SplitArg) -> Result<String, Error> {
         );
     }
     let mut out = String::new();
-    let titles = [
-        ("1", "Table 1"),
-        ("2", "Table 3"),
-        ("3k0", "Table 5, k = 0"),
-        ("3k2", "Table 5, k = 2"),
-        ("3k5", "Table 5, k = 5"),
-    ];
-    for (ex, title) in titles {
+    for ex in repro::EXAMPLES {
+        let title = table_title(ex, false);
         out += &format!("\n{title} (Example {ex}): recursions to reach diam < eps, ours (paper)\n");
         out += &format!("{:<10}", "method");
         for lg in repro::LG_EPS {
@@ -427,14 +435,8 @@ fn tables_cmd(json: bool, split: SplitArg) -> Result<String, Error> {
             out += "\n";
         }
     }
-    let dtitles = [
-        ("1", "Table 2"),
-        ("2", "Table 4"),
-        ("3k0", "Table 6, k = 0"),
-        ("3k2", "Table 6, k = 2"),
-        ("3k5", "Table 6, k = 5"),
-    ];
-    for (ex, title) in dtitles {
+    for ex in repro::EXAMPLES {
+        let title = table_title(ex, true);
         out += &format!("\n{title} (Example {ex}): diam of the tri-box holding the root, by level: ours (paper)\n");
         out += &format!("{:<6}{:>26}{:>26}\n", "level", "hc-nopre", "hc");
         let levels = diam
