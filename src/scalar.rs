@@ -38,6 +38,7 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 use std::sync::{Arc, Mutex, OnceLock};
 
 mod endpoints;
+pub(crate) mod iv;
 pub(crate) use endpoints::{cached_endpoints, endpoints_of, from_endpoints, store_endpoints, Arith, Endpoints};
 
 /// What a kernel can say about the sign of a value.

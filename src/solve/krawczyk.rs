@@ -15,22 +15,50 @@
 //! interval coefficients, so the verdicts hold for every polynomial system in
 //! the coefficient enclosures.
 
-use crate::poly::TriBezier;
+use crate::poly::{Direction, TensorBezier, TriBezier};
 use crate::scalar::point;
 use inari::Interval;
+
+/// A bivariate polynomial the Krawczyk operator can work on: evaluated in
+/// interval arithmetic anywhere in the plane (it extends beyond its domain),
+/// with its partial derivatives as polynomials of the same kind.
+pub trait Bivariate: Clone {
+    /// An enclosure of the range over the box `u × v`.
+    fn value(&self, u: Interval, v: Interval) -> Interval;
+    /// `[∂/∂u, ∂/∂v]`.
+    fn partials(&self) -> [Self; 2];
+}
+
+impl Bivariate for TriBezier<Interval> {
+    fn value(&self, u: Interval, v: Interval) -> Interval {
+        self.eval(u, v)
+    }
+    fn partials(&self) -> [Self; 2] {
+        [self.deriv_u(), self.deriv_v()]
+    }
+}
+
+impl Bivariate for TensorBezier<Interval> {
+    fn value(&self, u: Interval, v: Interval) -> Interval {
+        self.eval(u, v)
+    }
+    fn partials(&self) -> [Self; 2] {
+        [self.deriv(Direction::U), self.deriv(Direction::V)]
+    }
+}
 
 /// A 2-D box `[u, v]`.
 pub type IBox = [Interval; 2];
 
 /// The system `F = (f, g)` with its Jacobian, as BB polynomials in the
-/// coordinates the boxes are given in (evaluated by de Casteljau at
-/// barycentric `(u, v, 1 − u − v)`; the polynomials extend beyond their
-/// triangle).
+/// coordinates the boxes are given in (triangular polynomials are evaluated by
+/// de Casteljau at barycentric `(u, v, 1 − u − v)`, tensor ones row by row;
+/// both extend beyond their domain).
 #[derive(Clone, Debug)]
-pub struct System {
-    f: TriBezier<Interval>,
-    g: TriBezier<Interval>,
-    jac: [TriBezier<Interval>; 4],
+pub struct System<P = TriBezier<Interval>> {
+    f: P,
+    g: P,
+    jac: [P; 4],
 }
 
 /// What a Krawczyk step proves about a box.
@@ -46,15 +74,20 @@ pub enum Verdict {
     Undecided(IBox),
 }
 
-impl System {
+impl<P: Bivariate> System<P> {
     /// The system `(f, g)`.
-    pub fn new(f: TriBezier<Interval>, g: TriBezier<Interval>) -> Self {
-        let jac = [f.deriv_u(), f.deriv_v(), g.deriv_u(), g.deriv_v()];
-        Self { f, g, jac }
+    pub fn new(f: P, g: P) -> Self {
+        let [fu, fv] = f.partials();
+        let [gu, gv] = g.partials();
+        Self {
+            f,
+            g,
+            jac: [fu, fv, gu, gv],
+        }
     }
 
-    fn eval(p: &TriBezier<Interval>, x: IBox) -> Interval {
-        p.eval(x[0], x[1])
+    fn eval(p: &P, x: IBox) -> Interval {
+        p.value(x[0], x[1])
     }
 
     /// `F(x)` enclosed.

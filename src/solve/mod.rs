@@ -19,6 +19,7 @@ pub mod fatcurve;
 pub mod krawczyk;
 pub mod method;
 pub mod num;
+pub mod rect;
 pub mod tribox;
 
 use crate::error::{Error, Result};
@@ -27,7 +28,7 @@ use crate::scalar::{interval, point, Scalar};
 pub use driver::SplitRule;
 use driver::{path_diameters, Counters, ExactPair, Leaf, Limits, Probe};
 use inari::Interval;
-use krawczyk::{IBox, System, Verdict};
+use krawczyk::{Bivariate, IBox, System, Verdict};
 pub use method::Method;
 use num_rational::BigRational;
 
@@ -165,8 +166,10 @@ pub struct Cluster {
 pub struct Leftover {
     /// The triangle, as a box in `(u, v)`.
     pub bx: Box2,
-    /// Its vertices in `(u, v)` (enclosed: exact for the triangle domain).
-    pub triangle: [[f64; 2]; 3],
+    /// The triangle's vertices in `(u, v)` (enclosed: exact for the triangle
+    /// domain); `None` for a box of the rectangle solver ([`rect`]), whose
+    /// region is `bx` itself.
+    pub triangle: Option<[[f64; 2]; 3]>,
 }
 
 /// Counters of a solve.
@@ -483,7 +486,7 @@ fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &Solv
             let triangle = leaf.tb.verts.map(|p| frame.map_point(p));
             leftovers.push(Leftover {
                 bx: Box2::of(bx),
-                triangle,
+                triangle: Some(triangle),
             });
         }
     }
@@ -583,7 +586,7 @@ const SMALL_GROUP: usize = 16;
 /// shared edge is then found once); a small group whose hull fails is tried
 /// leaf by leaf (two roots closer than a few tri-boxes), a large one becomes
 /// an undecided cluster.
-fn certify_groups(groups: Vec<Vec<Found>>, global: &System, stats: &mut Stats) -> (Vec<Found>, Vec<Found>) {
+fn certify_groups<P: Bivariate>(groups: Vec<Vec<Found>>, global: &System<P>, stats: &mut Stats) -> (Vec<Found>, Vec<Found>) {
     let (mut roots, mut clusters) = (Vec::new(), Vec::new());
     for group in groups {
         let len = group.len();
@@ -642,7 +645,7 @@ fn hull(a: IBox, b: IBox) -> IBox {
 /// tri-box edge). If Krawczyk proves a unique root in their hull, they are one
 /// root; otherwise (rare) both stay, since each holds exactly one root but
 /// they might be different.
-fn merge_roots(mut found: Vec<Found>, global: &System, stats: &mut Stats) -> (Vec<Found>, Vec<Found>) {
+fn merge_roots<P: Bivariate>(mut found: Vec<Found>, global: &System<P>, stats: &mut Stats) -> (Vec<Found>, Vec<Found>) {
     let mut out: Vec<Found> = Vec::new();
     let mut undecided: Vec<Found> = Vec::new();
     'next: while let Some(r) = found.pop() {

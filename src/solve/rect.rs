@@ -1,0 +1,1051 @@
+//! Native rectangular clipping for tensor-product systems: Bézier clipping
+//! (Nishita, Sederberg & Kakimoto 1990) on boxes, with the same proofs as the
+//! triangle solver and Krawczyk certificates in each box's own coordinates.
+//!
+//! # The iteration
+//! A box `B = [a, b] × [c, d]` carries interval enclosures of the Bernstein
+//! coefficients `f_ij`, `g_ij` of the system restricted to `B` (local
+//! coordinates `(s, t) ∈ [0, 1]²`). One step:
+//! 1. **check-sign**: if every `f_ij` (or every `g_ij`) is strictly positive,
+//!    or strictly negative, `B` holds no root (the Bernstein basis is a
+//!    positive partition of unity);
+//! 2. **objective**: with an objective `k = p/q` (`q > 0`) and a floor
+//!    `k_min`, `B` is dropped when every `p_ij/q_ij < k_min` (then
+//!    `k < k_min` on `B`: `k` is a convex combination of the ratios);
+//! 3. **Krawczyk** in local coordinates once `B` is small: `X = [0, 1]²`,
+//!    `F'(X)` enclosed by the hull of the derivative's Bernstein coefficients
+//!    `m(f_{i+1,j} − f_ij)`, `n(f_{i,j+1} − f_ij)`, `F(½, ½)` by interval de
+//!    Casteljau. `K(X) ⊂ (0, 1)²` proves exactly one root in `B`, simple, in the
+//!    interior — so no neighbouring box can claim it; `K(X) ∩ X = ∅` proves
+//!    none. A certified box is then contracted by iterating `K`;
+//! 4. **clip** in `s` and in `t`: for `f(s, t) = Σ_i B^m_i(s) c_i(t)` with
+//!    `c_i(t) ∈ [L_i, U_i] = [min_j f_ij, max_j f_ij]`, a root `s*` puts
+//!    `(s*, 0)` in the convex hull of the segments `{i/m} × [L_i, U_i]`, so
+//!    `s*` lies between the smallest and largest abscissa where a segment
+//!    joining two of those points of opposite sign crosses zero (or where
+//!    `L_i ≤ 0 ≤ U_i`). The crossings are computed in `f64` and widened by
+//!    `4·10⁻¹⁵` (their error is below `7·2⁻⁵³`, since every value is in
+//!    `[0, 1]` and the quotient `y_i/(y_i − y_j)` of opposite signs never
+//!    cancels). The kept span is the intersection over `f` and `g`;
+//! 5. a step that did not halve the box's area **splits** it across its
+//!    longer side at `63/128` (off the centre, so that a root at a "round"
+//!    parameter such as ½ is rarely on a split line).
+//!
+//! # Exact sub-boxes
+//! A clip to `[α, β]` is done as two de Casteljau splits at *floats*: keep
+//! `[α, 1]`, then its first `γ ≥ (β − α)/(1 − α)` (rounded up). So each box is
+//! an exact real sub-box of its parent — its coefficients are enclosures for
+//! exactly it — while its endpoints in the domain are known as intervals
+//! (`a + (b − a)·α` is not a float). Reported boxes use the outer endpoints.
+//!
+//! # Leaves
+//! A box narrower than `eps` that Krawczyk could not settle in its interior
+//! (a root on a split line or on the domain's boundary, or a multiple root)
+//! is tried by Krawczyk with ε-inflation on the whole system in domain
+//! coordinates: a unique root outside the box excludes it; a unique root
+//! touching it is a candidate (two candidates that overlap are merged when
+//! Krawczyk proves one root in their hull); otherwise the leaf is undecided.
+//!
+//! Interval arithmetic: the hot loops use [`Iv`] (nearest rounding moved one
+//! float outward), certification of leaves uses inari.
+
+use super::krawczyk::{IBox, System, Verdict};
+use super::{
+    group_overlapping, hull_of, merge_roots, Box2, Cluster, ClusterReason, Found, Leftover, Root, Solution, Stats,
+};
+use crate::error::{Error, Result};
+use crate::poly::TensorBezier;
+use crate::scalar::interval;
+use crate::scalar::iv::Iv;
+use inari::Interval;
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+/// What the caller wants from the roots, ordered by an objective `k`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Query {
+    /// Every root.
+    #[default]
+    All,
+    /// The roots of smallest objective: boxes are explored in order of the
+    /// objective's lower bound and the search stops once the best certified
+    /// root's upper bound is below every remaining box's lower bound.
+    Nearest,
+    /// Any one certified root with `k ≥ k_min`: the search stops at the first.
+    Any,
+}
+
+/// Options of [`solve_rect`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RectOptions {
+    /// Boxes narrower than `eps` (relative to the domain's sides) become
+    /// leaves; see the module docs.
+    pub eps: f64,
+    /// Boxes processed before the run stops with `complete = false`.
+    pub max_boxes: usize,
+    /// All roots, the nearest, or any.
+    pub query: Query,
+    /// Drop regions where the objective is provably below this value.
+    pub key_min: Option<f64>,
+}
+
+impl Default for RectOptions {
+    fn default() -> Self {
+        Self {
+            eps: 1e-12,
+            max_boxes: 200_000,
+            query: Query::All,
+            key_min: None,
+        }
+    }
+}
+
+/// An objective `k = num/den` over the domain, with `den > 0` on it.
+#[derive(Clone, Copy, Debug)]
+pub struct Objective<'a> {
+    /// The numerator.
+    pub num: &'a TensorBezier<Interval>,
+    /// The denominator (`1` if absent); its coefficients must be positive.
+    pub den: Option<&'a TensorBezier<Interval>>,
+}
+
+/// The result of [`solve_rect`].
+///
+/// # Contract
+/// The [`Solution`] contract, with these amendments for the queries:
+/// * [`Query::All`]: as stated there (with `key_min`: for the roots where the
+///   objective is `≥ key_min`; roots with a smaller objective may or may not
+///   be returned).
+/// * [`Query::Nearest`]: `complete = true` means every root whose objective
+///   is at most the smallest certified upper bound `k*` (over roots with
+///   objective provably `≥ key_min`) lies in a returned region; regions whose
+///   objective is provably above `k*` were not explored.
+/// * [`Query::Any`]: if `stopped_early`, the first certified root is returned
+///   and nothing is claimed about the rest.
+#[derive(Clone, Debug)]
+pub struct RectSolution {
+    /// Roots, clusters, leftovers and counters.
+    pub solution: Solution,
+    /// [`Query::Any`] found its root and stopped.
+    pub stopped_early: bool,
+}
+
+/// The widening of hull crossings (see the module docs).
+const MARGIN: f64 = 4e-15;
+/// Boxes at most this wide (relative) get a local Krawczyk test.
+const KRAWCZYK_BELOW: f64 = 0.125;
+/// Where boxes are split (exact, and so is `1 − SPLIT`).
+const SPLIT: f64 = 63.0 / 128.0;
+/// Coefficients beyond this magnitude are rejected (keeps every difference
+/// of two coefficients finite, which the hull crossings rely on).
+const MAX_MAGNITUDE: f64 = 1e300;
+
+/// Solves `f = g = 0` on the domain of `f` (a rectangle) by Bézier clipping on
+/// boxes; see the module docs for the method and [`RectSolution`] for what
+/// the result guarantees.
+///
+/// Errors: different domains, an equation whose coefficients all contain 0
+/// (it may be identically zero: [`Error::Degenerate`]), non-finite or huge
+/// coefficients ([`Error::NonFinite`]), a bad `eps`.
+///
+/// ```
+/// use rootclip::poly::TensorBezier;
+/// use rootclip::solve::rect::{solve_rect, RectOptions};
+/// use rootclip::scalar::point;
+/// // f = s − ¼, g = t − ¾ on the unit square (bidegree (1, 1)).
+/// let f = TensorBezier::on_unit_square(1, 1, [-0.25, -0.25, 0.75, 0.75].map(point).to_vec()).unwrap();
+/// let g = TensorBezier::on_unit_square(1, 1, [-0.75, 0.25, -0.75, 0.25].map(point).to_vec()).unwrap();
+/// let r = solve_rect(&f, &g, None, &RectOptions::default()).unwrap().solution;
+/// assert!(r.complete && r.roots.len() == 1 && r.roots[0].bx.contains(0.25, 0.75));
+/// ```
+pub fn solve_rect(
+    f: &TensorBezier<Interval>,
+    g: &TensorBezier<Interval>,
+    objective: Option<Objective<'_>>,
+    opts: &RectOptions,
+) -> Result<RectSolution> {
+    let (du, dv) = f.domain();
+    let same = |p: &TensorBezier<Interval>| {
+        let (a, b) = p.domain();
+        a == du && b == dv
+    };
+    if !same(g) || objective.is_some_and(|o| !same(o.num) || o.den.is_some_and(|d| !same(d))) {
+        return Err(Error::Shape("the system and the objective must share one rectangle".into()));
+    }
+    let (mf, nf) = f.degree();
+    let (mg, ng) = g.degree();
+    let mut m = mf.max(mg).max(1);
+    let mut n = nf.max(ng).max(1);
+    if let Some(o) = objective {
+        m = m.max(o.num.degree().0);
+        n = n.max(o.num.degree().1);
+        if let Some(d) = o.den {
+            m = m.max(d.degree().0);
+            n = n.max(d.degree().1);
+        }
+    }
+    let lift = |p: &TensorBezier<Interval>| -> Result<Vec<Iv>> {
+        let e = if p.degree() == (m, n) { p.clone() } else { p.elevate(m, n)? };
+        Ok(e.coeffs().iter().map(|c| Iv::new(c.inf(), c.sup())).collect())
+    };
+    let iv = |x: &Interval| Iv::new(x.inf(), x.sup());
+    let problem = RectProblem {
+        m,
+        n,
+        domain: [[iv(&du[0]), iv(&du[1])], [iv(&dv[0]), iv(&dv[1])]],
+        f: lift(f)?,
+        g: lift(g)?,
+        num: objective.map(|o| lift(o.num)).transpose()?,
+        den: objective.and_then(|o| o.den).map(lift).transpose()?,
+    };
+    solve_rect_iv(problem, opts)
+}
+
+/// The input of [`solve_rect_iv`]: the system (and objective) as [`Iv`]
+/// coefficient enclosures of one bidegree `(m, n)`, row-major, on `domain`
+/// (each endpoint an enclosure of the exact one).
+#[derive(Clone, Debug)]
+pub(crate) struct RectProblem {
+    pub(crate) m: usize,
+    pub(crate) n: usize,
+    pub(crate) domain: [[Iv; 2]; 2],
+    pub(crate) f: Vec<Iv>,
+    pub(crate) g: Vec<Iv>,
+    pub(crate) num: Option<Vec<Iv>>,
+    pub(crate) den: Option<Vec<Iv>>,
+}
+
+/// [`solve_rect`] on [`Iv`] coefficients (the ray front end's fast path).
+pub(crate) fn solve_rect_iv(p: RectProblem, opts: &RectOptions) -> Result<RectSolution> {
+    if !(opts.eps > 0.0 && opts.eps < 1.0) {
+        return Err(Error::Shape(format!("eps must lie in (0, 1), got {}", opts.eps)));
+    }
+    let (m, n) = (p.m, p.n);
+    let len = (m + 1) * (n + 1);
+    if m == 0 || n == 0 {
+        return Err(Error::Shape("the rectangle solver needs bidegree ≥ (1, 1)".into()));
+    }
+    let parts = [Some(&p.f), Some(&p.g), p.num.as_ref(), p.den.as_ref()];
+    for c in parts.into_iter().flatten() {
+        if c.len() != len {
+            return Err(Error::Shape(format!("bidegree ({m}, {n}) needs {len} coefficients, got {}", c.len())));
+        }
+        if let Some(x) = c.iter().find(|x| !(x.lo.abs() <= MAX_MAGNITUDE && x.hi.abs() <= MAX_MAGNITUDE && x.lo <= x.hi)) {
+            return Err(Error::NonFinite(format!("coefficient [{}, {}] is not finite or beyond 1e300", x.lo, x.hi)));
+        }
+    }
+    if !p.domain.iter().flatten().all(|x| x.is_finite()) || !(0..2).all(|a| p.domain[a][0].hi < p.domain[a][1].lo) {
+        return Err(Error::Shape("the rectangle must be finite and non-empty".into()));
+    }
+    for (name, c) in [("f", &p.f), ("g", &p.g)] {
+        if c.iter().all(|x| x.lo <= 0.0 && x.hi >= 0.0) {
+            return Err(Error::Degenerate(format!(
+                "every coefficient of {name} contains 0: it may vanish identically"
+            )));
+        }
+    }
+    if p.den.as_ref().is_some_and(|d| d.iter().any(|x| !(x.lo > 0.0))) {
+        return Err(Error::Degenerate("the objective's denominator must be positive".into()));
+    }
+    // The objective is carried through the subdivision only when the query
+    // orders by it; for `All` it is checked once on the whole domain (and
+    // the caller drops roots whose objective is provably below `key_min`).
+    let carry = p.num.is_some() && opts.query != Query::All;
+    let shape = Shape {
+        m,
+        n,
+        len,
+        polys: 2 + usize::from(carry) + usize::from(carry && p.den.is_some()),
+        has_key: carry,
+        has_den: carry && p.den.is_some(),
+    };
+    let mut buf = Vec::with_capacity(shape.polys * len);
+    buf.extend_from_slice(&p.f);
+    buf.extend_from_slice(&p.g);
+    if let (Some(num), true) = (&p.num, carry) {
+        buf.extend_from_slice(num);
+        if let Some(den) = &p.den {
+            buf.extend_from_slice(den);
+        }
+    }
+    if let (Some(num), Some(k_min)) = (&p.num, opts.key_min) {
+        // k = num/den with den > 0: k < k_min everywhere if every ratio is.
+        let below = match &p.den {
+            Some(den) => num.iter().zip(den).all(|(a, d)| a.div(*d).hi < k_min),
+            None => num.iter().all(|a| a.hi < k_min),
+        };
+        if below {
+            return Ok(RectSolution {
+                solution: Solution {
+                    complete: true,
+                    roots: Vec::new(),
+                    clusters: Vec::new(),
+                    leftovers: Vec::new(),
+                    stats: Stats::default(),
+                },
+                stopped_early: false,
+            });
+        }
+    }
+    let domain = p.domain;
+    let mut run = Runner {
+        shape,
+        opts: *opts,
+        scale: domain.map(|[lo, hi]| (hi.hi - lo.lo).next_up()),
+        stats: Stats::default(),
+        trace: Vec::new(),
+        found: Vec::new(),
+        undecided: Vec::new(),
+        problem: p,
+        global: None,
+        best: f64::INFINITY,
+        stopped_early: false,
+    };
+    let first = Node {
+        c: buf,
+        bx: domain,
+        key_lo: f64::NEG_INFINITY,
+        id: run.push_trace(u32::MAX, domain.map(|[lo, hi]| [lo.lo, hi.hi])),
+    };
+    let leftovers = run.drive(first);
+    Ok(run.finish(leftovers))
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Shape {
+    m: usize,
+    n: usize,
+    len: usize,
+    polys: usize,
+    has_key: bool,
+    has_den: bool,
+}
+
+/// A box: the coefficients of every polynomial on it, its endpoints (each an
+/// enclosure), the objective's lower bound, its trace index.
+#[derive(Clone, Debug)]
+struct Node {
+    c: Vec<Iv>,
+    bx: [[Iv; 2]; 2],
+    key_lo: f64,
+    id: u32,
+}
+
+impl Node {
+    fn outer(&self) -> [[f64; 2]; 2] {
+        self.bx.map(|[lo, hi]| [lo.lo, hi.hi])
+    }
+
+    fn ibox(&self) -> IBox {
+        self.outer().map(|[lo, hi]| interval(lo, hi))
+    }
+}
+
+/// Min-heap order on the objective's lower bound (for [`Query::Nearest`]).
+struct ByKey(Node);
+
+impl PartialEq for ByKey {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.key_lo.total_cmp(&other.0.key_lo) == Ordering::Equal
+    }
+}
+impl Eq for ByKey {}
+impl PartialOrd for ByKey {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for ByKey {
+    fn cmp(&self, other: &Self) -> Ordering {
+        other.0.key_lo.total_cmp(&self.0.key_lo)
+    }
+}
+
+enum Queue {
+    Stack(Vec<Node>),
+    Heap(BinaryHeap<ByKey>),
+}
+
+impl Queue {
+    fn push(&mut self, n: Node) {
+        match self {
+            Queue::Stack(s) => s.push(n),
+            Queue::Heap(h) => h.push(ByKey(n)),
+        }
+    }
+    fn pop(&mut self) -> Option<Node> {
+        match self {
+            Queue::Stack(s) => s.pop(),
+            Queue::Heap(h) => h.pop().map(|b| b.0),
+        }
+    }
+    fn drain(self) -> Vec<Node> {
+        match self {
+            Queue::Stack(s) => s,
+            Queue::Heap(h) => h.into_iter().map(|b| b.0).collect(),
+        }
+    }
+}
+
+struct Runner {
+    shape: Shape,
+    opts: RectOptions,
+    /// The domain's side lengths (widths are compared relative to them).
+    scale: [f64; 2],
+    stats: Stats,
+    /// `(parent, diameter)` per box, for [`Root::diameters`].
+    trace: Vec<(u32, f64)>,
+    found: Vec<Found>,
+    undecided: Vec<Found>,
+    problem: RectProblem,
+    /// The whole system in domain coordinates, built on first use.
+    global: Option<System<TensorBezier<Interval>>>,
+    /// Smallest certified upper bound of the objective (for Nearest).
+    best: f64,
+    stopped_early: bool,
+}
+
+enum Step {
+    Done,
+    Continue(Node),
+    Split(Node, Node),
+}
+
+impl Runner {
+    fn push_trace(&mut self, parent: u32, outer: [[f64; 2]; 2]) -> u32 {
+        let diam = (outer[0][1] - outer[0][0]).hypot(outer[1][1] - outer[1][0]);
+        self.trace.push((parent, diam));
+        (self.trace.len() - 1) as u32
+    }
+
+    fn diameters(&self, mut id: u32) -> Vec<f64> {
+        let mut out = Vec::new();
+        while id != u32::MAX {
+            let (parent, d) = self.trace[id as usize];
+            out.push(d);
+            id = parent;
+        }
+        out.reverse();
+        out
+    }
+
+    fn rel_width(&self, node: &Node) -> [f64; 2] {
+        let o = node.outer();
+        [(o[0][1] - o[0][0]) / self.scale[0], (o[1][1] - o[1][0]) / self.scale[1]]
+    }
+
+    /// The main loop; returns the boxes a budget left.
+    fn drive(&mut self, first: Node) -> Vec<Node> {
+        let mut queue = match self.opts.query {
+            Query::Nearest => Queue::Heap(BinaryHeap::new()),
+            _ => Queue::Stack(Vec::new()),
+        };
+        queue.push(first);
+        while let Some(node) = queue.pop() {
+            if self.opts.query == Query::Nearest && node.key_lo > self.best {
+                break;
+            }
+            if self.stopped_early {
+                break;
+            }
+            if self.stats.run.boxes >= self.opts.max_boxes {
+                let mut rest = queue.drain();
+                rest.push(node);
+                return rest;
+            }
+            self.stats.run.boxes += 1;
+            match self.step(node) {
+                Step::Done => {}
+                Step::Continue(n) => queue.push(n),
+                Step::Split(a, b) => {
+                    queue.push(b);
+                    queue.push(a);
+                }
+            }
+        }
+        Vec::new()
+    }
+
+    fn step(&mut self, mut node: Node) -> Step {
+        let sh = self.shape;
+        let (f, rest) = node.c.split_at(sh.len);
+        let g = &rest[..sh.len];
+        if one_signed(f) || one_signed(g) {
+            self.stats.run.sign_exclusions += 1;
+            return Step::Done;
+        }
+        if sh.has_key {
+            let (lo, hi) = self.key_bounds(&node.c);
+            if self.opts.key_min.is_some_and(|k| hi < k) {
+                self.stats.run.sign_exclusions += 1;
+                return Step::Done;
+            }
+            node.key_lo = node.key_lo.max(lo);
+            if self.opts.query == Query::Nearest && node.key_lo > self.best {
+                return Step::Done;
+            }
+        }
+        let w = self.rel_width(&node);
+        if w[0].max(w[1]) <= KRAWCZYK_BELOW {
+            self.stats.krawczyk_calls += 1;
+            match local_krawczyk(&node.c, sh) {
+                Local::Unique(k) => {
+                    let bx = [0, 1].map(|a| {
+                        let [lo, hi] = node.bx[a];
+                        let x = lo.add(hi.sub(lo).mul(k[a]));
+                        interval(x.lo, x.hi)
+                    });
+                    let key = self.key_bounds(&node.c);
+                    self.add_root(bx, node.id, key);
+                    return Step::Done;
+                }
+                Local::NoRoot => {
+                    self.stats.run.probe_exclusions += 1;
+                    return Step::Done;
+                }
+                Local::Undecided => {}
+            }
+        }
+        if w[0].max(w[1]) < self.opts.eps {
+            self.leaf(&node);
+            return Step::Done;
+        }
+        // Clip in both directions.
+        let mut spans = [(0.0f64, 1.0f64); 2];
+        for (d, span) in spans.iter_mut().enumerate() {
+            for p in 0..2 {
+                match zero_span(&node.c[p * sh.len..(p + 1) * sh.len], sh, d) {
+                    None => {
+                        self.stats.run.clip_exclusions += 1;
+                        return Step::Done;
+                    }
+                    Some((a, b)) => *span = (span.0.max(a), span.1.min(b)),
+                }
+            }
+            if span.0 > span.1 {
+                self.stats.run.clip_exclusions += 1;
+                return Step::Done;
+            }
+        }
+        let mut area = 1.0;
+        for (d, &(a, b)) in spans.iter().enumerate() {
+            if a > 0.0 || b < 1.0 {
+                clip(&mut node, sh, d, a, b);
+                area *= b - a;
+            }
+        }
+        if area < 1.0 {
+            self.stats.run.clips += 1;
+            node.id = self.push_trace(node.id, node.outer());
+        }
+        if area <= 0.5 {
+            return Step::Continue(node);
+        }
+        let w = self.rel_width(&node);
+        if w[0].max(w[1]) < self.opts.eps {
+            self.leaf(&node);
+            return Step::Done;
+        }
+        self.stats.run.splits += 1;
+        let d = usize::from(w[1] > w[0]);
+        let (mut a, mut b) = split(&node, sh, d);
+        a.id = self.push_trace(node.id, a.outer());
+        b.id = self.push_trace(node.id, b.outer());
+        Step::Split(a, b)
+    }
+
+    /// Bounds of the objective over a box from its coefficients' ratios.
+    fn key_bounds(&self, c: &[Iv]) -> (f64, f64) {
+        let sh = self.shape;
+        if !sh.has_key {
+            return (f64::NEG_INFINITY, f64::INFINITY);
+        }
+        let num = &c[2 * sh.len..3 * sh.len];
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        if sh.has_den {
+            let den = &c[3 * sh.len..4 * sh.len];
+            for (p, q) in num.iter().zip(den) {
+                // q > 0: p/q is smallest at p.lo / (q.lo or q.hi).
+                let l = p.lo / if p.lo >= 0.0 { q.hi } else { q.lo };
+                let h = p.hi / if p.hi >= 0.0 { q.lo } else { q.hi };
+                if l.is_nan() || h.is_nan() {
+                    return (f64::NEG_INFINITY, f64::INFINITY);
+                }
+                lo = lo.min(l.next_down());
+                hi = hi.max(h.next_up());
+            }
+        } else {
+            for p in num {
+                if !p.is_finite() {
+                    return (f64::NEG_INFINITY, f64::INFINITY);
+                }
+                lo = lo.min(p.lo);
+                hi = hi.max(p.hi);
+            }
+        }
+        // NaN (impossible for finite positive denominators) proves nothing.
+        if lo.is_nan() || hi.is_nan() {
+            return (f64::NEG_INFINITY, f64::INFINITY);
+        }
+        (lo, hi)
+    }
+
+    /// Records a certified root; `key` bounds the objective over a box that
+    /// holds it (for the queries).
+    fn add_root(&mut self, bx: IBox, id: u32, key: (f64, f64)) {
+        if self.shape.has_key {
+            let above = self.opts.key_min.is_none_or(|m| key.0 >= m);
+            if above {
+                self.best = self.best.min(key.1);
+                if self.opts.query == Query::Any {
+                    self.stopped_early = true;
+                }
+            }
+        } else if self.opts.query == Query::Any {
+            self.stopped_early = true;
+        }
+        self.found.push(Found {
+            bx,
+            diameters: self.diameters(id),
+        });
+    }
+
+    /// A box below `eps` that local Krawczyk did not settle.
+    fn leaf(&mut self, node: &Node) {
+        self.stats.leaves += 1;
+        self.stats.krawczyk_calls += 1;
+        let x = node.ibox();
+        match self.system().certify(x) {
+            Verdict::Unique(k) => {
+                if k[0].disjoint(x[0]) || k[1].disjoint(x[1]) {
+                    self.stats.krawczyk_exclusions += 1;
+                } else {
+                    // The root may lie just outside this box (in a neighbour):
+                    // no objective bound from this box's coefficients then.
+                    self.add_root(k, node.id, (f64::NEG_INFINITY, f64::INFINITY));
+                }
+            }
+            Verdict::NoRoot => self.stats.krawczyk_exclusions += 1,
+            Verdict::Undecided(_) => self.undecided.push(Found {
+                bx: x,
+                diameters: self.diameters(node.id),
+            }),
+        }
+    }
+
+    /// The whole system in domain coordinates (for leaves and merging).
+    fn system(&mut self) -> &System<TensorBezier<Interval>> {
+        let p = &self.problem;
+        self.global.get_or_insert_with(|| {
+            let tb = |c: &[Iv]| {
+                let iv = |x: &Iv| interval(x.lo, x.hi);
+                let d = p.domain.map(|[lo, hi]| [iv(&lo), iv(&hi)]);
+                TensorBezier::new(p.m, p.n, c.iter().map(iv).collect(), d[0], d[1])
+                    .expect("checked in solve_rect_iv")
+            };
+            System::new(tb(&p.f), tb(&p.g))
+        })
+    }
+
+    fn finish(mut self, left: Vec<Node>) -> RectSolution {
+        let found = std::mem::take(&mut self.found);
+        let roots = if found.len() > 1 {
+            let mut stats = self.stats;
+            let (roots, undecided) = merge_roots(found, self.system(), &mut stats);
+            self.stats = stats;
+            self.undecided.extend(undecided);
+            roots
+        } else {
+            found
+        };
+        let domain = self.problem.domain;
+        let mut out = Vec::new();
+        for r in roots {
+            let x = r.bx;
+            let outside = (0..2).any(|a| x[a].sup() < domain[a][0].lo || x[a].inf() > domain[a][1].hi);
+            if outside {
+                self.stats.outside_domain += 1;
+                continue;
+            }
+            let inside = (0..2).all(|a| x[a].inf() > domain[a][0].hi && x[a].sup() < domain[a][1].lo);
+            out.push(Root {
+                u: x[0].mid(),
+                v: x[1].mid(),
+                bx: Box2::of(x),
+                certified: true,
+                on_boundary: !inside,
+                diameters: r.diameters,
+            });
+        }
+        out.sort_by(|a, b| a.u.total_cmp(&b.u).then(a.v.total_cmp(&b.v)));
+        let clusters = group_overlapping(std::mem::take(&mut self.undecided))
+            .into_iter()
+            .map(|group| {
+                let c = hull_of(group);
+                Cluster {
+                    bx: Box2::of(c.bx),
+                    reason: ClusterReason::KrawczykUndecided,
+                    diameters: c.diameters,
+                }
+            })
+            .collect();
+        self.stats.max_level = out.iter().map(|r| r.diameters.len().saturating_sub(1)).max().unwrap_or(0);
+        let leftovers: Vec<Leftover> = left
+            .iter()
+            .map(|n| Leftover {
+                bx: Box2::of(n.ibox()),
+                triangle: None,
+            })
+            .collect();
+        RectSolution {
+            solution: Solution {
+                complete: leftovers.is_empty(),
+                roots: out,
+                clusters,
+                leftovers,
+                stats: self.stats,
+            },
+            stopped_early: self.stopped_early,
+        }
+    }
+}
+
+fn one_signed(c: &[Iv]) -> bool {
+    c.iter().all(|x| x.lo > 0.0) || c.iter().all(|x| x.hi < 0.0)
+}
+
+/// Index of coefficient `(i, j)`.
+#[inline]
+fn at(sh: Shape, i: usize, j: usize) -> usize {
+    i * (sh.n + 1) + j
+}
+
+/// The span of `[0, 1]` in direction `d` (0: `s`, index `i`; 1: `t`, index
+/// `j`) where the convex hull of the coefficient ranges meets zero (module
+/// docs, step 4); `None` if it provably does not.
+fn zero_span(p: &[Iv], sh: Shape, d: usize) -> Option<(f64, f64)> {
+    let (k, other) = if d == 0 { (sh.m, sh.n) } else { (sh.n, sh.m) };
+    let mut lo = [0.0f64; 64];
+    let mut hi = [0.0f64; 64];
+    if k >= 64 {
+        return Some((0.0, 1.0));
+    }
+    for a in 0..=k {
+        let (mut l, mut h) = (f64::INFINITY, f64::NEG_INFINITY);
+        for b in 0..=other {
+            let c = if d == 0 { p[at(sh, a, b)] } else { p[at(sh, b, a)] };
+            if !c.is_finite() {
+                return Some((0.0, 1.0));
+            }
+            l = l.min(c.lo);
+            h = h.max(c.hi);
+        }
+        if !(l.is_finite() && h.is_finite()) {
+            return Some((0.0, 1.0));
+        }
+        lo[a] = l;
+        hi[a] = h;
+    }
+    let kf = k as f64;
+    let (mut a, mut b) = (f64::INFINITY, f64::NEG_INFINITY);
+    for i in 0..=k {
+        let xi = i as f64 / kf;
+        if lo[i] <= 0.0 && hi[i] >= 0.0 {
+            a = a.min(xi);
+            b = b.max(xi);
+        }
+        for j in i + 1..=k {
+            let xj = j as f64 / kf;
+            for yi in [lo[i], hi[i]] {
+                for yj in [lo[j], hi[j]] {
+                    if (yi < 0.0 && yj > 0.0) || (yi > 0.0 && yj < 0.0) {
+                        let x = xi + (xj - xi) * (yi / (yi - yj));
+                        a = a.min(x);
+                        b = b.max(x);
+                    }
+                }
+            }
+        }
+    }
+    if a > b {
+        return None;
+    }
+    Some(((a - MARGIN).max(0.0), (b + MARGIN).min(1.0)))
+}
+
+/// Visits every coefficient line in direction `d` of every polynomial: calls
+/// `op(first index, stride)`.
+fn for_lines(sh: Shape, d: usize, mut op: impl FnMut(usize, usize)) {
+    for p in 0..sh.polys {
+        let base = p * sh.len;
+        if d == 0 {
+            for j in 0..=sh.n {
+                op(base + j, sh.n + 1);
+            }
+        } else {
+            for i in 0..=sh.m {
+                op(base + i * (sh.n + 1), 1);
+            }
+        }
+    }
+}
+
+/// de Casteljau on the line `c[start + r·stride]`, `r = 0..=k`: keeps `[t, 1]`.
+fn keep_right(c: &mut [Iv], start: usize, stride: usize, k: usize, t: f64) {
+    for r in 1..=k {
+        for i in 0..=k - r {
+            let (x, y) = (c[start + i * stride], c[start + (i + 1) * stride]);
+            c[start + i * stride] = Iv::lerp(x, y, t);
+        }
+    }
+}
+
+/// de Casteljau on the line: keeps `[0, t]`.
+fn keep_left(c: &mut [Iv], start: usize, stride: usize, k: usize, t: f64) {
+    for r in 1..=k {
+        for i in (r..=k).rev() {
+            let (x, y) = (c[start + (i - 1) * stride], c[start + i * stride]);
+            c[start + i * stride] = Iv::lerp(x, y, t);
+        }
+    }
+}
+
+/// Restricts the node to `[α, β]` in direction `d` (module docs: exact
+/// sub-box through float split parameters).
+fn clip(node: &mut Node, sh: Shape, d: usize, alpha: f64, beta: f64) {
+    let k = if d == 0 { sh.m } else { sh.n };
+    // γ ≥ (β − α)/(1 − α), so the kept part [α, α + (1 − α)γ] ⊇ [α, β].
+    let gamma = if beta >= 1.0 {
+        1.0
+    } else {
+        ((beta - alpha).next_up() / (1.0 - alpha).next_down()).next_up().min(1.0)
+    };
+    let c = &mut node.c;
+    if alpha > 0.0 {
+        for_lines(sh, d, |s, st| keep_right(c, s, st, k, alpha));
+    }
+    if gamma < 1.0 {
+        for_lines(sh, d, |s, st| keep_left(c, s, st, k, gamma));
+    }
+    let [lo, hi] = node.bx[d];
+    // Convex combinations: the endpoint enclosures never grow wider than
+    // their parents' (plus rounding), however many clips follow.
+    let new_lo = if alpha > 0.0 { Iv::lerp(lo, hi, alpha) } else { lo };
+    let new_hi = if gamma < 1.0 { Iv::lerp(new_lo, hi, gamma) } else { hi };
+    node.bx[d] = [new_lo, new_hi];
+}
+
+/// Splits the node at [`SPLIT`] in direction `d`.
+fn split(node: &Node, sh: Shape, d: usize) -> (Node, Node) {
+    let k = if d == 0 { sh.m } else { sh.n };
+    let mut left = node.clone();
+    let mut right = node.clone();
+    for_lines(sh, d, |s, st| keep_left(&mut left.c, s, st, k, SPLIT));
+    for_lines(sh, d, |s, st| keep_right(&mut right.c, s, st, k, SPLIT));
+    let [lo, hi] = node.bx[d];
+    let mid = Iv::lerp(lo, hi, SPLIT);
+    left.bx[d] = [lo, mid];
+    right.bx[d] = [mid, hi];
+    (left, right)
+}
+
+/// An enclosure of the polynomial with row-major coefficients `p` of
+/// bidegree `(m, n)` over the local box `s × t` (any floats, extrapolation
+/// included), by de Casteljau with [`Iv::lerp_range`].
+pub(crate) fn eval_box(p: &[Iv], m: usize, n: usize, s: [f64; 2], t: [f64; 2]) -> Iv {
+    if m >= 64 || n >= 64 {
+        return Iv::new(f64::NEG_INFINITY, f64::INFINITY);
+    }
+    let mut col = [Iv::point(0.0); 64];
+    let mut row = [Iv::point(0.0); 64];
+    for (i, line) in p.chunks(n + 1).enumerate() {
+        row[..=n].copy_from_slice(line);
+        for k in 1..=n {
+            for j in 0..=n - k {
+                row[j] = Iv::lerp_range(row[j], row[j + 1], t[0], t[1]);
+            }
+        }
+        col[i] = row[0];
+    }
+    for k in 1..=m {
+        for i in 0..=m - k {
+            col[i] = Iv::lerp_range(col[i], col[i + 1], s[0], s[1]);
+        }
+    }
+    col[0]
+}
+
+enum Local {
+    Unique([Iv; 2]),
+    NoRoot,
+    Undecided,
+}
+
+/// The polynomial's value at the local point `(s, t)` (floats in `[0, 1]`).
+fn eval_local(p: &[Iv], sh: Shape, s: f64, t: f64) -> Iv {
+    let mut col = [Iv::point(0.0); 64];
+    let mut row = [Iv::point(0.0); 64];
+    for i in 0..=sh.m {
+        row[..=sh.n].copy_from_slice(&p[at(sh, i, 0)..=at(sh, i, sh.n)]);
+        for r in 1..=sh.n {
+            for j in 0..=sh.n - r {
+                row[j] = Iv::lerp(row[j], row[j + 1], t);
+            }
+        }
+        col[i] = row[0];
+    }
+    for r in 1..=sh.m {
+        for i in 0..=sh.m - r {
+            col[i] = Iv::lerp(col[i], col[i + 1], s);
+        }
+    }
+    col[0]
+}
+
+/// The value at the local point `(s, t)` of the polynomial with the
+/// midpoints of `p` as coefficients, in `f64` (a proposal, never a proof).
+fn eval_mid(p: &[Iv], sh: Shape, s: f64, t: f64) -> f64 {
+    let mut col = [0.0f64; 64];
+    let mut row = [0.0f64; 64];
+    for i in 0..=sh.m {
+        for (r, c) in row.iter_mut().zip(&p[at(sh, i, 0)..=at(sh, i, sh.n)]) {
+            *r = c.mid();
+        }
+        for r in 1..=sh.n {
+            for j in 0..=sh.n - r {
+                row[j] += t * (row[j + 1] - row[j]);
+            }
+        }
+        col[i] = row[0];
+    }
+    for r in 1..=sh.m {
+        for i in 0..=sh.m - r {
+            col[i] += s * (col[i + 1] - col[i]);
+        }
+    }
+    col[0]
+}
+
+/// Hulls of `∂p/∂s` and `∂p/∂t` over the box, from the derivative's
+/// Bernstein coefficients.
+fn jacobian_row(p: &[Iv], sh: Shape) -> [Iv; 2] {
+    let mut ds: Option<Iv> = None;
+    let mut dt: Option<Iv> = None;
+    for i in 0..=sh.m {
+        for j in 0..=sh.n {
+            let c = p[at(sh, i, j)];
+            if i < sh.m {
+                let x = p[at(sh, i + 1, j)].sub(c);
+                ds = Some(ds.map_or(x, |h| h.hull(x)));
+            }
+            if j < sh.n {
+                let x = p[at(sh, i, j + 1)].sub(c);
+                dt = Some(dt.map_or(x, |h| h.hull(x)));
+            }
+        }
+    }
+    let z = Iv::point(0.0);
+    [ds.unwrap_or(z).scale(sh.m as f64), dt.unwrap_or(z).scale(sh.n as f64)]
+}
+
+/// Krawczyk on `X = [0, 1]²` in the box's local coordinates (module docs,
+/// step 3), then contraction.
+fn local_krawczyk(c: &[Iv], sh: Shape) -> Local {
+    if sh.m >= 64 || sh.n >= 64 {
+        return Local::Undecided;
+    }
+    let (f, g) = (&c[..sh.len], &c[sh.len..2 * sh.len]);
+    let [a, b] = jacobian_row(f, sh);
+    let [cc, d] = jacobian_row(g, sh);
+    let j = [a, b, cc, d];
+    if j.iter().any(|x| !x.is_finite()) {
+        return Local::Undecided;
+    }
+    let jm = j.map(Iv::mid);
+    let det = jm[0] * jm[3] - jm[1] * jm[2];
+    let scale = (jm[0].abs() + jm[1].abs()) * (jm[2].abs() + jm[3].abs());
+    if det == 0.0 || !det.is_finite() || det.abs() < 1e-12 * scale {
+        return Local::Undecided;
+    }
+    let y = [jm[3] / det, -jm[1] / det, -jm[2] / det, jm[0] / det].map(Iv::point);
+    // M = I − Y J
+    let one = Iv::point(1.0);
+    let mm = [
+        one.sub(y[0].mul(j[0]).add(y[1].mul(j[2]))),
+        Iv::point(0.0).sub(y[0].mul(j[1]).add(y[1].mul(j[3]))),
+        Iv::point(0.0).sub(y[2].mul(j[0]).add(y[3].mul(j[2]))),
+        one.sub(y[2].mul(j[1]).add(y[3].mul(j[3]))),
+    ];
+    let kraw = |x: [Iv; 2]| -> Option<[Iv; 2]> {
+        let p = [x[0].mid(), x[1].mid()];
+        let fx = eval_local(f, sh, p[0], p[1]);
+        let gx = eval_local(g, sh, p[0], p[1]);
+        let d = [x[0].sub(Iv::point(p[0])), x[1].sub(Iv::point(p[1]))];
+        let k0 = Iv::point(p[0])
+            .sub(y[0].mul(fx).add(y[1].mul(gx)))
+            .add(mm[0].mul(d[0]).add(mm[1].mul(d[1])));
+        let k1 = Iv::point(p[1])
+            .sub(y[2].mul(fx).add(y[3].mul(gx)))
+            .add(mm[2].mul(d[0]).add(mm[3].mul(d[1])));
+        (k0.is_finite() && k1.is_finite()).then_some([k0, k1])
+    };
+    let unit = [Iv::new(0.0, 1.0); 2];
+    let Some(k) = kraw(unit) else {
+        return Local::Undecided;
+    };
+    if !(k[0].inside_open(0.0, 1.0) && k[1].inside_open(0.0, 1.0)) {
+        if k[0].meet(unit[0]).is_none() || k[1].meet(unit[1]).is_none() {
+            return Local::NoRoot;
+        }
+        return Local::Undecided;
+    }
+    // Contract. Every root in X lies in K(X), and J over the whole box stays
+    // valid for any X inside it. First Newton in f64 (with Y fixed: the chord
+    // method) from the centre of K proposes the root; then one Krawczyk step
+    // on a tiny box around it, sized from |Y F(x*)| and q = ‖I − Y J‖, proves
+    // it. If that fails, plain iteration of K.
+    let mut x = k;
+    let ym = y.map(|c| c.lo);
+    let mut p = [k[0].mid(), k[1].mid()];
+    for _ in 0..8 {
+        let (fv, gv) = (eval_mid(f, sh, p[0], p[1]), eval_mid(g, sh, p[0], p[1]));
+        let step = [ym[0] * fv + ym[1] * gv, ym[2] * fv + ym[3] * gv];
+        p = [
+            (p[0] - step[0]).clamp(k[0].lo, k[0].hi),
+            (p[1] - step[1]).clamp(k[1].lo, k[1].hi),
+        ];
+        if step[0].abs().max(step[1].abs()) < 1e-17 {
+            break;
+        }
+    }
+    let q = (mm[0].lo.abs().max(mm[0].hi.abs()) + mm[1].lo.abs().max(mm[1].hi.abs()))
+        .max(mm[2].lo.abs().max(mm[2].hi.abs()) + mm[3].lo.abs().max(mm[3].hi.abs()));
+    if q < 0.75 {
+        let (fv, gv) = (eval_local(f, sh, p[0], p[1]), eval_local(g, sh, p[0], p[1]));
+        let mag = |c: Iv| c.lo.abs().max(c.hi.abs());
+        let d = [
+            ym[0].abs() * mag(fv) + ym[1].abs() * mag(gv),
+            ym[2].abs() * mag(fv) + ym[3].abs() * mag(gv),
+        ];
+        let r = d.map(|d| 4.0 * d / (1.0 - q) + 1e-16);
+        let tiny = [0, 1].map(|a| Iv::new((p[a] - r[a]).max(k[a].lo), (p[a] + r[a]).min(k[a].hi)));
+        if let Some(kk) = kraw(tiny) {
+            if kk[0].inside_open(tiny[0].lo, tiny[0].hi) && kk[1].inside_open(tiny[1].lo, tiny[1].hi) {
+                // K(tiny) ⊂ int tiny: the root (the only one in the box) is in it.
+                return Local::Unique(kk);
+            }
+        }
+    }
+    for _ in 0..12 {
+        let Some(k) = kraw(x) else { break };
+        let (Some(a), Some(b)) = (k[0].meet(x[0]), k[1].meet(x[1])) else {
+            break;
+        };
+        let shrunk = a.wid().max(b.wid()) < 0.5 * x[0].wid().max(x[1].wid());
+        x = [a, b];
+        if !shrunk {
+            break;
+        }
+    }
+    Local::Unique(x)
+}
