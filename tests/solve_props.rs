@@ -35,7 +35,7 @@ use num_traits::{One, Signed, ToPrimitive, Zero};
 use proptest::collection::vec;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
-use rootclip::solve::{solve, Box2, Domain, Method, Root, Solution, SolveOptions};
+use rootclip::solve::{solve, Box2, Domain, Method, Root, Solution, SolveOptions, SquareRoute};
 use rootclip::{Error, Polynomial};
 
 type Q = BigRational;
@@ -1265,11 +1265,12 @@ fn close_pairs_property(
     (a, b): (i64, i64),
     mu: &Q,
     flip: (bool, bool),
+    o: &SolveOptions,
 ) -> Result<(), TestCaseError> {
     for k in [4u32, 6, 8] {
         let s = q(1, 10i64.pow(k));
         let known = planted_pair(p, a, b, mu, &s, flip.0, flip.1);
-        let o = default_opts();
+        let o = *o;
         let (sol, cover) = solve_checked(&known, dom, &o)?;
         if k == 4 {
             check_isolated_certified(&known, dom, &o, &sol, &cover, 1e-5)?;
@@ -1292,7 +1293,7 @@ proptest! {
 
     #[test]
     fn close_root_pairs(dom in domain(), (p, ab, mu, flip) in close_pair()) {
-        close_pairs_property(dom, &p, ab, &mu, flip)?;
+        close_pairs_property(dom, &p, ab, &mu, flip, &default_opts())?;
     }
 }
 
@@ -1614,4 +1615,62 @@ fn dense_oracle_rejects_false_claims() {
         check_dense(&f, &g, None, d, &s, "").is_err(),
         "a missed root not caught"
     );
+}
+
+/// The square through the native rectangle solver ([`SquareRoute::Rect`]).
+fn rect_opts() -> SolveOptions {
+    SolveOptions {
+        square_route: SquareRoute::Rect,
+        ..default_opts()
+    }
+}
+
+proptest! {
+    #![proptest_config(cfg(64))]
+
+    /// 10: the rectangle route on planted lines (interior, boundary, outside
+    /// and double points), tensor-friendly and slanted.
+    #[test]
+    fn rect_route_planted_lines(
+        (fl, gl) in line_system(point(Domain::Square), Domain::Square, Plan { axis: true, ..BROAD }),
+    ) {
+        planted_property(&fl, &gl, Domain::Square, &rect_opts())?;
+    }
+
+    /// 10: roots on the square's edges and corners. (Points 1e-9 outside
+    /// are left to `roots_just_outside`: a line through one of them parallel
+    /// to a line along the diagonal exhausts both routes' budgets.)
+    #[test]
+    fn rect_route_boundary(
+        (fl, gl) in line_system(
+            prop_oneof![2 => boundary_point(Domain::Square), 1 => grid_point(Domain::Square)].boxed(),
+            Domain::Square,
+            Plan { max_deg: 3, ..BROAD },
+        ),
+    ) {
+        planted_property(&fl, &gl, Domain::Square, &rect_opts())?;
+    }
+
+    /// 10: dense systems, every certificate re-proven exactly.
+    #[test]
+    fn rect_route_dense_reproven((f, g, p) in dense_system()) {
+        dense_property(&f, &g, p.as_ref(), Domain::Square, &rect_opts())?;
+    }
+}
+
+proptest! {
+    #![proptest_config(cfg(24))]
+
+    /// 10: multiple roots through the rectangle route: clusters, never
+    /// certificates.
+    #[test]
+    fn rect_route_multiple_roots(lines in concurrent_system(Domain::Square)) {
+        planted_property(&lines.0, &lines.1, Domain::Square, &rect_opts())?;
+    }
+
+    /// 10: close pairs through the rectangle route.
+    #[test]
+    fn rect_route_close_pairs((p, ab, mu, flip) in close_pair()) {
+        close_pairs_property(Domain::Square, &p, ab, &mu, flip, &rect_opts())?;
+    }
 }

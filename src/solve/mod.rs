@@ -60,6 +60,21 @@ pub struct SolveOptions {
     pub probe: bool,
     /// When a step splits 1-to-4 (default [`SplitRule::Halving`]).
     pub split: SplitRule,
+    /// How [`Domain::Square`] is solved by [`solve`] (default
+    /// [`SquareRoute::Triangles`], the paper's conversion).
+    pub square_route: SquareRoute,
+}
+
+/// How a system on the unit square is solved.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SquareRoute {
+    /// As two triangles of degree `m + n` with the chosen [`Method`].
+    #[default]
+    Triangles,
+    /// Natively on boxes by Bézier clipping ([`rect::solve_rect`]; `method`,
+    /// `probe`, `split` and `max_depth` do not apply), falling back to
+    /// [`SquareRoute::Triangles`] when its budget runs out.
+    Rect,
 }
 
 impl Default for SolveOptions {
@@ -71,6 +86,7 @@ impl Default for SolveOptions {
             max_depth: 400,
             probe: true,
             split: SplitRule::Halving,
+            square_route: SquareRoute::Triangles,
         }
     }
 }
@@ -311,6 +327,21 @@ pub fn solve(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions
             let ((m, n), (p, q)) = (f.degrees(), g.degrees());
             let (dm, dn) = (m.max(p) as usize, n.max(q) as usize);
             let (ef, eg) = (f.to_square().elevate(dm, dn)?, g.to_square().elevate(dm, dn)?);
+            if opts.square_route == SquareRoute::Rect {
+                let ropts = rect::RectOptions {
+                    eps: opts.eps,
+                    max_boxes: opts.max_boxes,
+                    ..rect::RectOptions::default()
+                };
+                let sol = rect::solve_rect(&ef.map(enclose), &eg.map(enclose), None, &ropts)?.solution;
+                if sol.complete {
+                    return Ok(sol);
+                }
+                // Out of budget (e.g. two curves running nearly parallel
+                // along a diagonal, which axis-aligned boxes separate only
+                // when they are as thin as the gap): the triangle route's fat
+                // curves and exact restarts handle those.
+            }
             let exact = Some((ef.to_triangles(), eg.to_triangles()));
             square_pieces(&ef.map(enclose), &eg.map(enclose), exact, opts)
         }

@@ -134,6 +134,16 @@ pub struct RectSolution {
 const MARGIN: f64 = 4e-15;
 /// Boxes at most this wide (relative) get a local Krawczyk test.
 const KRAWCZYK_BELOW: f64 = 0.125;
+/// A certified box narrower than this (relative to the box it was proven
+/// in) is reported; a wider one is clipped to it and certified again.
+const REPORT_BELOW: f64 = 1e-12;
+/// Stalled boxes narrower than this (relative) are not split but handed to
+/// the leaf test (see [`Runner::step`]).
+const SINGULAR_FLOOR: f64 = 1e-9;
+/// Scratch arrays on the stack hold this many coefficients per line; higher
+/// degrees skip the hull clip and the local Krawczyk test (they still split,
+/// and leaves are certified globally). The ray front end allows degree ≤ 20.
+const STACK: usize = 24;
 /// Where boxes are split (exact, and so is `1 − SPLIT`).
 const SPLIT: f64 = 63.0 / 128.0;
 /// Coefficients beyond this magnitude are rejected (keeps every difference
@@ -492,12 +502,23 @@ impl Runner {
                 Local::Unique(k) => {
                     let bx = [0, 1].map(|a| {
                         let [lo, hi] = node.bx[a];
-                        let x = lo.add(hi.sub(lo).mul(k[a]));
+                        let x = Iv::lerp_range(lo, hi, k[a].lo, k[a].hi);
                         interval(x.lo, x.hi)
                     });
-                    let key = self.key_bounds(&node.c);
-                    self.add_root(bx, node.id, key);
-                    return Step::Done;
+                    let narrow = (0..2).all(|a| bx[a].wid() <= self.opts.eps * self.scale[a]);
+                    if narrow || k[0].wid().max(k[1].wid()) <= REPORT_BELOW {
+                        let key = self.key_bounds(&node.c);
+                        self.add_root(bx, node.id, key);
+                        return Step::Done;
+                    }
+                    // The only root of the box lies in K ⊂ int box: go on
+                    // with the sub-box K, where J is tighter.
+                    for (d, c) in k.iter().enumerate() {
+                        clip(&mut node, sh, d, c.lo.max(0.0), c.hi.min(1.0));
+                    }
+                    self.stats.run.clips += 1;
+                    node.id = self.push_trace(node.id, node.outer());
+                    return Step::Continue(node);
                 }
                 Local::NoRoot => {
                     self.stats.run.probe_exclusions += 1;
@@ -541,8 +562,35 @@ impl Runner {
         if area <= 0.5 {
             return Step::Continue(node);
         }
+        // Stalled: clip again with preconditioned equations (module docs).
+        match preconditioned_spans(&node.c, sh) {
+            None => {
+                self.stats.run.clip_exclusions += 1;
+                return Step::Done;
+            }
+            Some(spans) => {
+                let mut shrink = 1.0;
+                for (d, &(a, b)) in spans.iter().enumerate() {
+                    if a > 0.0 || b < 1.0 {
+                        clip(&mut node, sh, d, a, b);
+                        shrink *= b - a;
+                    }
+                }
+                if shrink < 1.0 {
+                    self.stats.run.clips += 1;
+                    node.id = self.push_trace(node.id, node.outer());
+                }
+                if area * shrink <= 0.5 {
+                    return Step::Continue(node);
+                }
+            }
+        }
         let w = self.rel_width(&node);
-        if w[0].max(w[1]) < self.opts.eps {
+        // A stalled box below the floor is a leaf: near a multiple root the
+        // region where the coefficients' rounding hides the sign is
+        // ~√(rounding) wide, and splitting it down to `eps` would cost
+        // millions of boxes for nothing.
+        if w[0].max(w[1]) < self.opts.eps.max(SINGULAR_FLOOR) {
             self.leaf(&node);
             return Step::Done;
         }
@@ -725,9 +773,9 @@ fn at(sh: Shape, i: usize, j: usize) -> usize {
 /// docs, step 4); `None` if it provably does not.
 fn zero_span(p: &[Iv], sh: Shape, d: usize) -> Option<(f64, f64)> {
     let (k, other) = if d == 0 { (sh.m, sh.n) } else { (sh.n, sh.m) };
-    let mut lo = [0.0f64; 64];
-    let mut hi = [0.0f64; 64];
-    if k >= 64 {
+    let mut lo = [0.0f64; STACK];
+    let mut hi = [0.0f64; STACK];
+    if k >= STACK {
         return Some((0.0, 1.0));
     }
     for a in 0..=k {
@@ -853,11 +901,11 @@ fn split(node: &Node, sh: Shape, d: usize) -> (Node, Node) {
 /// bidegree `(m, n)` over the local box `s × t` (any floats, extrapolation
 /// included), by de Casteljau with [`Iv::lerp_range`].
 pub(crate) fn eval_box(p: &[Iv], m: usize, n: usize, s: [f64; 2], t: [f64; 2]) -> Iv {
-    if m >= 64 || n >= 64 {
+    if m >= STACK || n >= STACK {
         return Iv::new(f64::NEG_INFINITY, f64::INFINITY);
     }
-    let mut col = [Iv::point(0.0); 64];
-    let mut row = [Iv::point(0.0); 64];
+    let mut col = [Iv::point(0.0); STACK];
+    let mut row = [Iv::point(0.0); STACK];
     for (i, line) in p.chunks(n + 1).enumerate() {
         row[..=n].copy_from_slice(line);
         for k in 1..=n {
@@ -875,6 +923,57 @@ pub(crate) fn eval_box(p: &[Iv], m: usize, n: usize, s: [f64; 2], t: [f64; 2]) -
     col[0]
 }
 
+/// Spans from equations that are combinations of `f` and `g` (every root of
+/// the system is a root of each): the rows of `Y·F` with `Y ≈ J(centre)⁻¹`,
+/// which makes the system nearly the identity so the hulls are tight, and
+/// `h = a f + b g` with `(a, b)` the left singular vector of `J` for its
+/// smallest singular value, which is nearly constant where `f = 0` and
+/// `g = 0` run (nearly) parallel — there it proves no root at once, where
+/// axis-aligned hulls of `f` and `g` would need boxes as thin as the gap.
+/// `None` when some combination proves there is no root.
+fn preconditioned_spans(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
+    let (f, g) = (&c[..sh.len], &c[sh.len..2 * sh.len]);
+    let [a, b] = jacobian_row(f, sh);
+    let [cc, d] = jacobian_row(g, sh);
+    let j = [a, b, cc, d].map(Iv::mid);
+    if !j.iter().all(|x| x.is_finite()) {
+        return Some([(0.0, 1.0); 2]);
+    }
+    let mut combos: Vec<[f64; 2]> = Vec::with_capacity(3);
+    let det = j[0] * j[3] - j[1] * j[2];
+    if det != 0.0 && det.is_finite() {
+        combos.push([j[3] / det, -j[1] / det]);
+        combos.push([-j[2] / det, j[0] / det]);
+    }
+    // J Jᵀ = [[p, q], [q, r]]; eigenvector of its smallest eigenvalue.
+    let (p, q, r) = (j[0] * j[0] + j[1] * j[1], j[0] * j[2] + j[1] * j[3], j[2] * j[2] + j[3] * j[3]);
+    let lam = 0.5 * (p + r) - (0.25 * (p - r) * (p - r) + q * q).sqrt();
+    let (v1, v2) = ([q, lam - p], [lam - r, q]);
+    let v = if v1[0].abs() + v1[1].abs() >= v2[0].abs() + v2[1].abs() { v1 } else { v2 };
+    if v.iter().all(|x| x.is_finite()) && v != [0.0, 0.0] {
+        combos.push(v);
+    }
+    let mut spans = [(0.0f64, 1.0f64); 2];
+    let mut h = vec![Iv::point(0.0); sh.len];
+    for w in combos {
+        let (wa, wb) = (Iv::point(w[0]), Iv::point(w[1]));
+        for (k, x) in h.iter_mut().enumerate() {
+            *x = wa.mul(f[k]).add(wb.mul(g[k]));
+        }
+        if one_signed(&h) {
+            return None;
+        }
+        for (dir, span) in spans.iter_mut().enumerate() {
+            let (lo, hi) = zero_span(&h, sh, dir)?;
+            *span = (span.0.max(lo), span.1.min(hi));
+            if span.0 > span.1 {
+                return None;
+            }
+        }
+    }
+    Some(spans)
+}
+
 enum Local {
     Unique([Iv; 2]),
     NoRoot,
@@ -883,8 +982,8 @@ enum Local {
 
 /// The polynomial's value at the local point `(s, t)` (floats in `[0, 1]`).
 fn eval_local(p: &[Iv], sh: Shape, s: f64, t: f64) -> Iv {
-    let mut col = [Iv::point(0.0); 64];
-    let mut row = [Iv::point(0.0); 64];
+    let mut col = [Iv::point(0.0); STACK];
+    let mut row = [Iv::point(0.0); STACK];
     for i in 0..=sh.m {
         row[..=sh.n].copy_from_slice(&p[at(sh, i, 0)..=at(sh, i, sh.n)]);
         for r in 1..=sh.n {
@@ -905,8 +1004,8 @@ fn eval_local(p: &[Iv], sh: Shape, s: f64, t: f64) -> Iv {
 /// The value at the local point `(s, t)` of the polynomial with the
 /// midpoints of `p` as coefficients, in `f64` (a proposal, never a proof).
 fn eval_mid(p: &[Iv], sh: Shape, s: f64, t: f64) -> f64 {
-    let mut col = [0.0f64; 64];
-    let mut row = [0.0f64; 64];
+    let mut col = [0.0f64; STACK];
+    let mut row = [0.0f64; STACK];
     for i in 0..=sh.m {
         for (r, c) in row.iter_mut().zip(&p[at(sh, i, 0)..=at(sh, i, sh.n)]) {
             *r = c.mid();
@@ -951,7 +1050,7 @@ fn jacobian_row(p: &[Iv], sh: Shape) -> [Iv; 2] {
 /// Krawczyk on `X = [0, 1]²` in the box's local coordinates (module docs,
 /// step 3), then contraction.
 fn local_krawczyk(c: &[Iv], sh: Shape) -> Local {
-    if sh.m >= 64 || sh.n >= 64 {
+    if sh.m >= STACK || sh.n >= STACK {
         return Local::Undecided;
     }
     let (f, g) = (&c[..sh.len], &c[sh.len..2 * sh.len]);
