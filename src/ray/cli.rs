@@ -1,14 +1,19 @@
 //! The `rootclip ray` command: patch JSON in, hits (text or JSON) out.
 //!
 //! PATCH.json: `{"type":"triangle","degree":n,"points":[[x,y,z],…]}` (order of
-//! Eq. (2): `j` outer, `i` inner) or `{"type":"tensor","degree":[m,n],"points":[…]}`
-//! (row-major), each with optional `"weights"` in the same order. RAYS.txt:
+//! Eq. (2): `j` outer, `i` inner), `{"type":"tensor","degree":[m,n],"points":[…]}`
+//! (row-major) or a B-spline/NURBS surface
+//! `{"type":"bspline","degree":[p,q],"knots_u":[…],"knots_v":[…],"points":[…]}`
+//! (`n_u·n_v` points row-major, `P_ij` at `i·n_v + j`, with
+//! `n_u = len(knots_u) − p − 1`; clamped or unclamped knots, see
+//! [`BsplineSurface::new`]), each with optional `"weights"` in the same order;
+//! B-spline hits are reported in knot parameters. RAYS.txt:
 //! one ray per line, `ox oy oz dx dy dz` (blank lines and `#` comments are
 //! skipped). JSON out: `{"rays":[{"complete":…,"hits":[…]}]}`, one entry per
 //! ray in input order; a degenerate ray has `"complete": false` and a
 //! `"degenerate"` reason.
 
-use super::{default_options, intersect, Hit, Patch, Ray, RayOutcome, TensorPatch, TriPatch};
+use super::{default_options, intersect, BsplineSurface, Hit, Patch, Ray, RayOutcome, TensorPatch, TriPatch};
 use crate::error::{Error, Result};
 use glam::DVec3;
 use serde_json::{json, Value};
@@ -85,18 +90,35 @@ pub fn parse_patch(text: &str) -> Result<Patch> {
             Ok(TriPatch::new(n as usize, points, weights)?.into())
         }
         "tensor" => {
-            let d = numbers(degree, "degree")?;
-            let ok = d.len() == 2 && d.iter().all(|x| *x >= 0.0 && x.fract() == 0.0);
-            if !ok {
-                return Err(shape("tensor \"degree\" must be [m, n] with non-negative integers"));
-            }
-            Ok(TensorPatch::new(d[0] as usize, d[1] as usize, points, weights)?.into())
+            let (m, n) = bidegree(degree, "tensor", "[m, n]")?;
+            Ok(TensorPatch::new(m, n, points, weights)?.into())
         }
-        "bspline" => Err(shape(
-            "B-spline/NURBS patches are not supported yet (decompose into Bézier patches)",
-        )),
-        other => Err(shape(&format!("unknown patch type {other:?} (triangle, tensor)"))),
+        "bspline" => {
+            let (p, q) = bidegree(degree, "bspline", "[p, q]")?;
+            let knots = |key: &str| -> Result<Vec<f64>> {
+                let k = v
+                    .get(key)
+                    .ok_or_else(|| shape(&format!("bspline needs \"{key}\", an array of non-decreasing numbers")))?;
+                numbers(k, key)
+            };
+            Ok(BsplineSurface::new((p, q), knots("knots_u")?, knots("knots_v")?, points, weights)?.into())
+        }
+        other => Err(shape(&format!(
+            "unknown patch type {other:?} (triangle, tensor, bspline)"
+        ))),
     }
+}
+
+/// `[m, n]` with non-negative integers.
+fn bidegree(degree: &Value, kind: &str, form: &str) -> Result<(usize, usize)> {
+    let d = numbers(degree, "degree")?;
+    let ok = d.len() == 2 && d.iter().all(|x| *x >= 0.0 && x.fract() == 0.0);
+    if !ok {
+        return Err(shape(&format!(
+            "{kind} \"degree\" must be {form} with non-negative integers"
+        )));
+    }
+    Ok((d[0] as usize, d[1] as usize))
 }
 
 fn shape(msg: &str) -> Error {

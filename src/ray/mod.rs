@@ -31,9 +31,11 @@
 //! is a solve that exhausts its budget or ends in many undecided regions (a
 //! curve of hits, or a ray grazing along the surface).
 
+pub mod bspline;
 pub mod cli;
 pub mod patch;
 
+pub use bspline::{intersect_bspline, BezierPiece, BsplineSurface};
 pub use patch::{Patch, TensorPatch, TriPatch, MAX_DEGREE};
 
 use crate::error::{Error, Result};
@@ -212,6 +214,7 @@ pub fn default_options() -> SolveOptions {
 pub fn intersect(patch: &Patch, ray: &Ray, opts: &SolveOptions) -> Result<RayOutcome> {
     let planes = Planes::of(ray);
     let solved = match patch {
+        Patch::Bspline(s) => return bspline::intersect_bspline(s, ray, opts),
         Patch::Triangle(p) => {
             let [f, g] = reduce(p.inet(), &planes);
             let n = p.degree();
@@ -241,6 +244,8 @@ pub fn intersect(patch: &Patch, ray: &Ray, opts: &SolveOptions) -> Result<RayOut
     let hits = match patch {
         Patch::Triangle(p) => collect_hits(&sol, p.inet(), patch, &planes),
         Patch::Tensor(p) => collect_hits(&sol, p.inet(), patch, &planes),
+        // Returned by the first match; delegating again keeps this one total.
+        Patch::Bspline(s) => return bspline::intersect_bspline(s, ray, opts),
     };
     if !sol.complete || sol.clusters.len() > MAX_CLUSTERS {
         return Ok(RayOutcome::Degenerate(Degeneracy::Unresolved(RayHits {

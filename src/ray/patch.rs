@@ -7,6 +7,7 @@
 //! reduced system and the enclosure of `t`). The interval net encloses the
 //! exact products `w·x` of the input floats.
 
+use super::bspline::BsplineSurface;
 use crate::error::{Error, Result};
 use crate::poly::{tri_len, Direction, TensorBezier, TriBezier};
 use crate::scalar::point;
@@ -43,7 +44,8 @@ pub struct TensorPatch {
     inet: Net<TensorBezier<Interval>>,
 }
 
-/// Either kind of patch.
+/// A Bézier patch of either kind, or a B-spline/NURBS surface (intersected
+/// piece by piece, see [`super::bspline`]).
 // Patches are built once and borrowed by every ray: the size difference of
 // the variants costs nothing, boxing would cost an indirection per ray.
 #[allow(clippy::large_enum_variant)]
@@ -53,6 +55,9 @@ pub enum Patch {
     Triangle(TriPatch),
     /// A tensor-product patch on the unit square.
     Tensor(TensorPatch),
+    /// A B-spline or NURBS surface on its knot domain (boxed: it owns its
+    /// Bézier pieces).
+    Bspline(Box<BsplineSurface>),
 }
 
 impl From<TriPatch> for Patch {
@@ -64,6 +69,12 @@ impl From<TriPatch> for Patch {
 impl From<TensorPatch> for Patch {
     fn from(p: TensorPatch) -> Self {
         Patch::Tensor(p)
+    }
+}
+
+impl From<BsplineSurface> for Patch {
+    fn from(s: BsplineSurface) -> Self {
+        Patch::Bspline(Box::new(s))
     }
 }
 
@@ -296,6 +307,7 @@ impl Patch {
         match self {
             Patch::Triangle(p) => p.eval(u, v),
             Patch::Tensor(p) => p.eval(u, v),
+            Patch::Bspline(s) => s.eval(u, v),
         }
     }
 
@@ -304,6 +316,7 @@ impl Patch {
         match self {
             Patch::Triangle(p) => p.partials(u, v),
             Patch::Tensor(p) => p.partials(u, v),
+            Patch::Bspline(s) => s.partials(u, v),
         }
     }
 
@@ -319,6 +332,7 @@ impl Patch {
         match self {
             Patch::Triangle(p) => p.points(),
             Patch::Tensor(p) => p.points(),
+            Patch::Bspline(s) => s.points(),
         }
     }
 }
