@@ -17,6 +17,7 @@
 #![forbid(unsafe_code)]
 
 pub mod error;
+pub mod heuristics;
 pub mod poly;
 pub mod ray;
 pub mod repro;

@@ -34,13 +34,17 @@
 pub mod bspline;
 pub mod cli;
 pub mod patch;
+pub mod sample;
 
 pub use bspline::{intersect_bspline, BezierPiece, BsplineSurface};
 pub use patch::{Patch, TensorPatch, TriPatch, MAX_DEGREE};
 
 use crate::error::{Error, Result};
 use crate::poly::{TensorBezier, TriBezier};
+use crate::scalar::iv::Iv;
 use crate::scalar::{interval, point};
+pub use crate::solve::rect::Query;
+use crate::solve::rect::{eval_box, solve_rect_iv, RectOptions, RectProblem};
 use crate::solve::{solve_square, solve_triangle, Box2, Solution, SolveOptions};
 use glam::DVec3;
 use inari::Interval;
@@ -212,14 +216,84 @@ pub fn default_options() -> SolveOptions {
 /// assert!((h.hits[0].t - 2.0).abs() < 1e-12);
 /// ```
 pub fn intersect(patch: &Patch, ray: &Ray, opts: &SolveOptions) -> Result<RayOutcome> {
+    intersect_with(
+        patch,
+        ray,
+        &RayOptions {
+            solve: *opts,
+            ..RayOptions::default()
+        },
+    )
+}
+
+/// How a tensor-product patch is solved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum TensorRoute {
+    /// Native Bézier clipping on boxes ([`solve_rect`]), with the query's
+    /// pruning inside the solve (`t < 0` regions dropped, nearest-first
+    /// order); a ray that exhausts its budget is retried through
+    /// [`TensorRoute::Triangles`]. The default: measured over 20 times
+    /// faster (README).
+    #[default]
+    Rect,
+    /// The square as two triangles of degree `m + n`, solved by hybrid
+    /// clipping ([`solve_square`]); queries filter the full hit list.
+    Triangles,
+}
+
+/// Options of [`intersect_with`].
+#[derive(Clone, Debug)]
+pub struct RayOptions {
+    /// Solver options (`eps`, `max_boxes`; `method` and `split` apply to
+    /// triangles).
+    pub solve: SolveOptions,
+    /// How tensor patches are solved.
+    pub route: TensorRoute,
+    /// All hits, the nearest, or any (shadow rays).
+    pub query: Query,
+}
+
+impl Default for RayOptions {
+    fn default() -> Self {
+        Self {
+            solve: default_options(),
+            route: TensorRoute::default(),
+            query: Query::All,
+        }
+    }
+}
+
+/// The hits of `ray` with `patch` that `opts.query` asks for:
+/// * [`Query::All`]: every hit with `t ≥ 0` ([`intersect`]);
+/// * [`Query::Nearest`]: the hits that may be the nearest ([`RayHits::nearest`]:
+///   a single certified hit is the proven nearest one), found without
+///   exploring regions provably farther than a certified hit;
+/// * [`Query::Any`]: one certified hit with `t` provably `≥ 0` if there is one
+///   (the search stops there), else as for `All`.
+///
+/// `complete` keeps its meaning for the hits the query asks for.
+pub fn intersect_with(patch: &Patch, ray: &Ray, opts: &RayOptions) -> Result<RayOutcome> {
+    if let (Patch::Tensor(p), TensorRoute::Rect) = (patch, opts.route) {
+        let out = intersect_rect(p, patch, ray, opts)?;
+        if !matches!(out, RayOutcome::Degenerate(Degeneracy::Unresolved(ref h)) if !h.complete) {
+            return Ok(out);
+        }
+        // Out of budget: retry through the triangles (fat curves separate
+        // nearly parallel curves that axis-aligned boxes cannot).
+        let tri = RayOptions {
+            route: TensorRoute::Triangles,
+            ..opts.clone()
+        };
+        return intersect_with(patch, ray, &tri);
+    }
     let planes = Planes::of(ray);
     let solved = match patch {
-        Patch::Bspline(s) => return bspline::intersect_bspline(s, ray, opts),
+        Patch::Bspline(s) => return bspline::intersect_bspline(s, ray, &opts.solve),
         Patch::Triangle(p) => {
             let [f, g] = reduce(p.inet(), &planes);
             let n = p.degree();
             let (f, g) = (TriBezier::new(n, f)?, TriBezier::new(n, g)?);
-            run(f.coeffs(), g.coeffs(), || solve_triangle(&f, &g, opts))?
+            run(f.coeffs(), g.coeffs(), || solve_triangle(&f, &g, &opts.solve))?
         }
         Patch::Tensor(p) => {
             let [f, g] = reduce(p.inet(), &planes);
@@ -228,7 +302,7 @@ pub fn intersect(patch: &Patch, ray: &Ray, opts: &SolveOptions) -> Result<RayOut
                 TensorBezier::on_unit_square(m, n, f)?,
                 TensorBezier::on_unit_square(m, n, g)?,
             );
-            run(f.coeffs(), g.coeffs(), || solve_square(&f, &g, opts))?
+            run(f.coeffs(), g.coeffs(), || solve_square(&f, &g, &opts.solve))?
         }
     };
     let sol = match solved {
@@ -241,11 +315,11 @@ pub fn intersect(patch: &Patch, ray: &Ray, opts: &SolveOptions) -> Result<RayOut
         }
         Solved::ZeroEquation => return Ok(RayOutcome::Degenerate(Degeneracy::ZeroEquation)),
     };
-    let hits = match patch {
+    let mut hits = match patch {
         Patch::Triangle(p) => collect_hits(&sol, p.inet(), patch, &planes),
         Patch::Tensor(p) => collect_hits(&sol, p.inet(), patch, &planes),
         // Returned by the first match; delegating again keeps this one total.
-        Patch::Bspline(s) => return bspline::intersect_bspline(s, ray, opts),
+        Patch::Bspline(s) => return bspline::intersect_bspline(s, ray, &opts.solve),
     };
     if !sol.complete || sol.clusters.len() > MAX_CLUSTERS {
         return Ok(RayOutcome::Degenerate(Degeneracy::Unresolved(RayHits {
@@ -253,7 +327,154 @@ pub fn intersect(patch: &Patch, ray: &Ray, opts: &SolveOptions) -> Result<RayOut
             hits,
         })));
     }
+    select(&mut hits, opts.query);
     Ok(RayOutcome::Hits(RayHits { complete: true, hits }))
+}
+
+/// The tensor route through [`solve_rect`], in [`Iv`] arithmetic throughout:
+/// the reduction, the objective `h = (wP − w o)·d̃` (so `t = 2^s h / (w |d̃|²)`),
+/// and the `t` enclosures of the hits.
+fn intersect_rect(p: &TensorPatch, patch: &Patch, ray: &Ray, opts: &RayOptions) -> Result<RayOutcome> {
+    let (m, n) = p.degree();
+    let d = ray.dir;
+    let e = d.abs().max_element().log2().floor().clamp(-1000.0, 1000.0) as i32;
+    let scale = 2f64.powi(-e);
+    let dt = d.to_array().map(|x| Iv::point(x).scale(scale));
+    let a = d.abs();
+    let axis = if a.x <= a.y && a.x <= a.z {
+        0
+    } else if a.y <= a.z {
+        1
+    } else {
+        2
+    };
+    let mut e_a = [Iv::point(0.0); 3];
+    e_a[axis] = Iv::point(1.0);
+    let cross = |a: [Iv; 3], b: [Iv; 3]| {
+        [
+            a[1].mul(b[2]).sub(a[2].mul(b[1])),
+            a[2].mul(b[0]).sub(a[0].mul(b[2])),
+            a[0].mul(b[1]).sub(a[1].mul(b[0])),
+        ]
+    };
+    let n1 = cross(e_a, dt);
+    let n2 = cross(dt, n1);
+    let dot = |a: &[Iv; 3], b: &[Iv; 3]| a[0].mul(b[0]).add(a[1].mul(b[1])).add(a[2].mul(b[2]));
+    let o = ray.origin.to_array();
+    let len = (m + 1) * (n + 1);
+    let (mut f, mut g, mut h) = (
+        Vec::with_capacity(len),
+        Vec::with_capacity(len),
+        Vec::with_capacity(len),
+    );
+    let weights = p.weights();
+    for (k, pt) in p.points().iter().enumerate() {
+        let q: [Iv; 3] = match weights {
+            None => std::array::from_fn(|c| Iv::point(pt[c]).sub(Iv::point(o[c]))),
+            Some(w) => {
+                let w = Iv::point(w[k]);
+                std::array::from_fn(|c| w.mul(Iv::point(pt[c])).sub(w.mul(Iv::point(o[c]))))
+            }
+        };
+        f.push(dot(&n1, &q));
+        g.push(dot(&n2, &q));
+        h.push(dot(&dt, &q));
+    }
+    let one_signed = |c: &[Iv]| c.iter().all(|x| x.lo > 0.0) || c.iter().all(|x| x.hi < 0.0);
+    if one_signed(&f) || one_signed(&g) || h.iter().all(|x| x.hi < 0.0) {
+        return Ok(RayOutcome::Hits(RayHits {
+            complete: true,
+            hits: Vec::new(),
+        }));
+    }
+    let maybe_zero = |c: &[Iv]| c.iter().all(|x| x.lo <= 0.0 && x.hi >= 0.0);
+    if maybe_zero(&f) || maybe_zero(&g) {
+        return Ok(RayOutcome::Degenerate(Degeneracy::ZeroEquation));
+    }
+    let den: Option<Vec<Iv>> = weights.map(|w| w.iter().map(|&x| Iv::point(x)).collect());
+    let unit = [[Iv::point(0.0), Iv::point(1.0)]; 2];
+    let problem = RectProblem {
+        m,
+        n,
+        domain: unit,
+        f,
+        g,
+        num: Some(h.clone()),
+        den: den.clone(),
+    };
+    let ropts = RectOptions {
+        eps: opts.solve.eps,
+        max_boxes: opts.solve.max_boxes,
+        query: opts.query,
+        key_min: Some(0.0),
+    };
+    let sol = match solve_rect_iv(problem, &ropts) {
+        Ok(r) => r.solution,
+        Err(Error::Degenerate(_)) => return Ok(RayOutcome::Degenerate(Degeneracy::ZeroEquation)),
+        Err(e) => return Err(e),
+    };
+    let d2 = dot(&dt, &dt);
+    let t_of = |bx: Box2| {
+        let num = eval_box(&h, m, n, bx.u, bx.v);
+        let w = den.as_ref().map_or(Iv::point(1.0), |w| eval_box(w, m, n, bx.u, bx.v));
+        num.div(w.mul(d2)).scale(scale)
+    };
+    let regions = sol
+        .roots
+        .iter()
+        .map(|r| (r.bx, true))
+        .chain(sol.clusters.iter().map(|c| (c.bx, false)));
+    let mut hits: Vec<Hit> = regions
+        .filter_map(|(bx, certified)| {
+            let t = t_of(bx);
+            if t.hi < 0.0 {
+                return None;
+            }
+            let (u, v) = (0.5 * (bx.u[0] + bx.u[1]), 0.5 * (bx.v[0] + bx.v[1]));
+            Some(Hit {
+                t: t.mid(),
+                u,
+                v,
+                point: patch.eval(u, v),
+                normal: patch.normal(u, v),
+                certified,
+                t_straddles_zero: t.lo <= 0.0,
+                bx: HitBox {
+                    u: bx.u,
+                    v: bx.v,
+                    t: [t.lo, t.hi],
+                },
+            })
+        })
+        .collect();
+    hits.sort_by(|a, b| a.t.total_cmp(&b.t).then(a.u.total_cmp(&b.u)).then(a.v.total_cmp(&b.v)));
+    if !sol.complete || sol.clusters.len() > MAX_CLUSTERS {
+        return Ok(RayOutcome::Degenerate(Degeneracy::Unresolved(RayHits {
+            complete: sol.complete,
+            hits,
+        })));
+    }
+    select(&mut hits, opts.query);
+    Ok(RayOutcome::Hits(RayHits { complete: true, hits }))
+}
+
+/// Keeps the hits a query asks for (the list is sorted by `t`).
+fn select(hits: &mut Vec<Hit>, query: Query) {
+    match query {
+        Query::All => {}
+        Query::Nearest => {
+            let all = RayHits {
+                complete: true,
+                hits: std::mem::take(hits),
+            };
+            *hits = all.nearest().into_iter().cloned().collect();
+        }
+        Query::Any => {
+            if let Some(h) = hits.iter().find(|h| h.certified && !h.t_straddles_zero) {
+                *hits = vec![h.clone()];
+            }
+        }
+    }
 }
 
 enum Solved {

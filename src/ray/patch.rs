@@ -89,6 +89,34 @@ pub(crate) trait Bb<S: Scalar>: Clone {
     fn value(&self, u: S, v: S) -> S;
     fn d_u(&self) -> Self;
     fn d_v(&self) -> Self;
+    /// `[p, ∂p/∂u, ∂p/∂v]` at `(u, v)`.
+    fn jet(&self, u: S, v: S) -> [S; 3] {
+        [
+            self.value(u.clone(), v.clone()),
+            self.d_u().value(u.clone(), v.clone()),
+            self.d_v().value(u, v),
+        ]
+    }
+}
+
+/// Value and derivative of a univariate BB polynomial on `[0, 1]` at `t`:
+/// de Casteljau stopped one level early leaves `p₀, p₁`, and then
+/// `p = (1 − t)p₀ + t p₁`, `p' = k (p₁ − p₀)`.
+fn uni_jet<S: Scalar>(c: &mut [S], t: &S) -> (S, S) {
+    let k = c.len() - 1;
+    if k == 0 {
+        return (c[0].clone(), S::zero());
+    }
+    let s = S::one() - t.clone();
+    for r in 1..k {
+        for i in 0..=k - r {
+            c[i] = s.clone() * c[i].clone() + t.clone() * c[i + 1].clone();
+        }
+    }
+    let (p0, p1) = (c[0].clone(), c[1].clone());
+    let value = s * p0.clone() + t.clone() * p1.clone();
+    let kk = S::from_f64(k as f64).expect("a small integer is exact in every kernel");
+    (value, kk * (p1 - p0))
 }
 
 impl<S: Scalar> Bb<S> for TriBezier<S> {
@@ -106,6 +134,34 @@ impl<S: Scalar> Bb<S> for TriBezier<S> {
 impl<S: Scalar> Bb<S> for TensorBezier<S> {
     fn value(&self, u: S, v: S) -> S {
         self.eval(u, v)
+    }
+    /// Row by row in `v` (value and `v`-derivative), then both columns in
+    /// `u`; the patch nets live on the unit square, so local = domain
+    /// derivatives there (other rectangles take the general path).
+    fn jet(&self, u: S, v: S) -> [S; 3] {
+        let (du, dv) = self.domain();
+        let unit =
+            |d: &[S; 2]| d[0].lower() == 0.0 && d[0].upper() == 0.0 && d[1].lower() == 1.0 && d[1].upper() == 1.0;
+        if !(unit(du) && unit(dv)) {
+            return [
+                self.value(u.clone(), v.clone()),
+                self.d_u().value(u.clone(), v.clone()),
+                self.d_v().value(u, v),
+            ];
+        }
+        let n = self.degree().1;
+        let mut row = Vec::with_capacity(n + 1);
+        let (mut vals, mut dvs): (Vec<S>, Vec<S>) = (Vec::new(), Vec::new());
+        for line in self.coeffs().chunks(n + 1) {
+            row.clear();
+            row.extend_from_slice(line);
+            let (p, dp) = uni_jet(&mut row, &v);
+            vals.push(p);
+            dvs.push(dp);
+        }
+        let (p, pu) = uni_jet(&mut vals, &u);
+        let (pv, _) = uni_jet(&mut dvs, &u);
+        [p, pu, pv]
     }
     fn d_u(&self) -> Self {
         self.deriv(Direction::U)
@@ -351,13 +407,11 @@ fn eval_f64<P: Bb<f64>>(net: &Net<P>, u: f64, v: f64) -> DVec3 {
 }
 
 fn partials_f64<P: Bb<f64>>(net: &Net<P>, u: f64, v: f64) -> (DVec3, DVec3) {
-    let h: [_; 4] = std::array::from_fn(|k| net.c[k].value(u, v));
-    let (x, w) = (DVec3::new(h[0], h[1], h[2]), h[3]);
+    let jets: [[f64; 3]; 4] = std::array::from_fn(|k| net.c[k].jet(u, v));
+    let (x, w) = (DVec3::new(jets[0][0], jets[1][0], jets[2][0]), jets[3][0]);
     // Quotient rule on (X/W): (X' W − X W') / W².
-    let d = |ds: [f64; 4]| (DVec3::new(ds[0], ds[1], ds[2]) * w - x * ds[3]) / (w * w);
-    let du: [f64; 4] = std::array::from_fn(|k| net.c[k].d_u().value(u, v));
-    let dv: [f64; 4] = std::array::from_fn(|k| net.c[k].d_v().value(u, v));
-    (d(du), d(dv))
+    let d = |a: usize| (DVec3::new(jets[0][a], jets[1][a], jets[2][a]) * w - x * jets[3][a]) / (w * w);
+    (d(1), d(2))
 }
 
 /// The enclosure of `S` over the box `(U, V)`: each homogeneous coordinate

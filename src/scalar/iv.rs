@@ -229,7 +229,9 @@ mod tests {
 
     /// Deterministic operands spanning signs, magnitudes and subnormals.
     fn operands() -> Vec<f64> {
-        let mut v = vec![0.0, -0.0, 1.0, -1.0, 0.1, -0.3, 1e-300, -5e-324, 3e-310, 1e300, -7.25e18];
+        let mut v = vec![
+            0.0, -0.0, 1.0, -1.0, 0.1, -0.3, 1e-300, -5e-324, 3e-310, 1e300, -7.25e18,
+        ];
         let mut x = 0.123_456_789_f64;
         for _ in 0..40 {
             x = (x * 7919.0 + 0.377).fract();

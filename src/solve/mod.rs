@@ -617,7 +617,11 @@ const SMALL_GROUP: usize = 16;
 /// shared edge is then found once); a small group whose hull fails is tried
 /// leaf by leaf (two roots closer than a few tri-boxes), a large one becomes
 /// an undecided cluster.
-fn certify_groups<P: Bivariate>(groups: Vec<Vec<Found>>, global: &System<P>, stats: &mut Stats) -> (Vec<Found>, Vec<Found>) {
+fn certify_groups<P: Bivariate>(
+    groups: Vec<Vec<Found>>,
+    global: &System<P>,
+    stats: &mut Stats,
+) -> (Vec<Found>, Vec<Found>) {
     let (mut roots, mut clusters) = (Vec::new(), Vec::new());
     for group in groups {
         let len = group.len();

@@ -180,7 +180,9 @@ pub fn solve_rect(
         a == du && b == dv
     };
     if !same(g) || objective.is_some_and(|o| !same(o.num) || o.den.is_some_and(|d| !same(d))) {
-        return Err(Error::Shape("the system and the objective must share one rectangle".into()));
+        return Err(Error::Shape(
+            "the system and the objective must share one rectangle".into(),
+        ));
     }
     let (mf, nf) = f.degree();
     let (mg, ng) = g.degree();
@@ -195,7 +197,11 @@ pub fn solve_rect(
         }
     }
     let lift = |p: &TensorBezier<Interval>| -> Result<Vec<Iv>> {
-        let e = if p.degree() == (m, n) { p.clone() } else { p.elevate(m, n)? };
+        let e = if p.degree() == (m, n) {
+            p.clone()
+        } else {
+            p.elevate(m, n)?
+        };
         Ok(e.coeffs().iter().map(|c| Iv::new(c.inf(), c.sup())).collect())
     };
     let iv = |x: &Interval| Iv::new(x.inf(), x.sup());
@@ -238,10 +244,19 @@ pub(crate) fn solve_rect_iv(p: RectProblem, opts: &RectOptions) -> Result<RectSo
     let parts = [Some(&p.f), Some(&p.g), p.num.as_ref(), p.den.as_ref()];
     for c in parts.into_iter().flatten() {
         if c.len() != len {
-            return Err(Error::Shape(format!("bidegree ({m}, {n}) needs {len} coefficients, got {}", c.len())));
+            return Err(Error::Shape(format!(
+                "bidegree ({m}, {n}) needs {len} coefficients, got {}",
+                c.len()
+            )));
         }
-        if let Some(x) = c.iter().find(|x| !(x.lo.abs() <= MAX_MAGNITUDE && x.hi.abs() <= MAX_MAGNITUDE && x.lo <= x.hi)) {
-            return Err(Error::NonFinite(format!("coefficient [{}, {}] is not finite or beyond 1e300", x.lo, x.hi)));
+        if let Some(x) = c
+            .iter()
+            .find(|x| !(x.lo.abs() <= MAX_MAGNITUDE && x.hi.abs() <= MAX_MAGNITUDE && x.lo <= x.hi))
+        {
+            return Err(Error::NonFinite(format!(
+                "coefficient [{}, {}] is not finite or beyond 1e300",
+                x.lo, x.hi
+            )));
         }
     }
     if !p.domain.iter().flatten().all(|x| x.is_finite()) || !(0..2).all(|a| p.domain[a][0].hi < p.domain[a][1].lo) {
@@ -254,7 +269,10 @@ pub(crate) fn solve_rect_iv(p: RectProblem, opts: &RectOptions) -> Result<RectSo
             )));
         }
     }
-    if p.den.as_ref().is_some_and(|d| d.iter().any(|x| !(x.lo > 0.0))) {
+    if p.den
+        .as_ref()
+        .is_some_and(|d| d.iter().any(|x| x.lo.is_nan() || x.lo <= 0.0))
+    {
         return Err(Error::Degenerate("the objective's denominator must be positive".into()));
     }
     // The objective is carried through the subdivision only when the query
@@ -512,9 +530,12 @@ impl Runner {
                         return Step::Done;
                     }
                     // The only root of the box lies in K ⊂ int box: go on
-                    // with the sub-box K, where J is tighter.
+                    // with K widened by half its width on each side (so the
+                    // root stays inside, away from the new edges), where J
+                    // is tighter.
                     for (d, c) in k.iter().enumerate() {
-                        clip(&mut node, sh, d, c.lo.max(0.0), c.hi.min(1.0));
+                        let r = 0.5 * (c.hi - c.lo);
+                        clip(&mut node, sh, d, (c.lo - r).max(0.0), (c.hi + r).min(1.0));
                     }
                     self.stats.run.clips += 1;
                     node.id = self.push_trace(node.id, node.outer());
@@ -546,6 +567,16 @@ impl Runner {
             if span.0 > span.1 {
                 self.stats.run.clip_exclusions += 1;
                 return Step::Done;
+            }
+        }
+        if w[0].max(w[1]) <= KRAWCZYK_BELOW {
+            // Near a simple root the hulls close in on it from both sides,
+            // leaving it within rounding of an edge, where K(X) ⊂ int X can
+            // never hold. Keep a quarter of the span's width as margin on
+            // each side so that the next Krawczyk test can succeed.
+            for span in spans.iter_mut() {
+                let r = 0.25 * (span.1 - span.0);
+                *span = ((span.0 - r).max(0.0), (span.1 + r).min(1.0));
             }
         }
         let mut area = 1.0;
@@ -688,8 +719,7 @@ impl Runner {
             let tb = |c: &[Iv]| {
                 let iv = |x: &Iv| interval(x.lo, x.hi);
                 let d = p.domain.map(|[lo, hi]| [iv(&lo), iv(&hi)]);
-                TensorBezier::new(p.m, p.n, c.iter().map(iv).collect(), d[0], d[1])
-                    .expect("checked in solve_rect_iv")
+                TensorBezier::new(p.m, p.n, c.iter().map(iv).collect(), d[0], d[1]).expect("checked in solve_rect_iv")
             };
             System::new(tb(&p.f), tb(&p.g))
         })
@@ -737,7 +767,11 @@ impl Runner {
                 }
             })
             .collect();
-        self.stats.max_level = out.iter().map(|r| r.diameters.len().saturating_sub(1)).max().unwrap_or(0);
+        self.stats.max_level = out
+            .iter()
+            .map(|r| r.diameters.len().saturating_sub(1))
+            .max()
+            .unwrap_or(0);
         let leftovers: Vec<Leftover> = left
             .iter()
             .map(|n| Leftover {
@@ -866,7 +900,9 @@ fn clip(node: &mut Node, sh: Shape, d: usize, alpha: f64, beta: f64) {
     let gamma = if beta >= 1.0 {
         1.0
     } else {
-        ((beta - alpha).next_up() / (1.0 - alpha).next_down()).next_up().min(1.0)
+        ((beta - alpha).next_up() / (1.0 - alpha).next_down())
+            .next_up()
+            .min(1.0)
     };
     let c = &mut node.c;
     if alpha > 0.0 {
@@ -946,10 +982,18 @@ fn preconditioned_spans(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
         combos.push([-j[2] / det, j[0] / det]);
     }
     // J Jᵀ = [[p, q], [q, r]]; eigenvector of its smallest eigenvalue.
-    let (p, q, r) = (j[0] * j[0] + j[1] * j[1], j[0] * j[2] + j[1] * j[3], j[2] * j[2] + j[3] * j[3]);
+    let (p, q, r) = (
+        j[0] * j[0] + j[1] * j[1],
+        j[0] * j[2] + j[1] * j[3],
+        j[2] * j[2] + j[3] * j[3],
+    );
     let lam = 0.5 * (p + r) - (0.25 * (p - r) * (p - r) + q * q).sqrt();
     let (v1, v2) = ([q, lam - p], [lam - r, q]);
-    let v = if v1[0].abs() + v1[1].abs() >= v2[0].abs() + v2[1].abs() { v1 } else { v2 };
+    let v = if v1[0].abs() + v1[1].abs() >= v2[0].abs() + v2[1].abs() {
+        v1
+    } else {
+        v2
+    };
     if v.iter().all(|x| x.is_finite()) && v != [0.0, 0.0] {
         combos.push(v);
     }
