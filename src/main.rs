@@ -96,27 +96,8 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Every hit of rays with a Bézier patch, each certified.
-    Ray {
-        /// PATCH.json: {"type":"triangle"|"tensor","degree":..,"points":[[x,y,z],..],"weights":[..]}.
-        #[arg(long)]
-        patch: String,
-        /// Origin x,y,z of a single ray (with --dir).
-        #[arg(long, allow_hyphen_values = true)]
-        origin: Option<String>,
-        /// Direction x,y,z of a single ray (with --origin; not normalized).
-        #[arg(long, allow_hyphen_values = true)]
-        dir: Option<String>,
-        /// RAYS.txt: one ray per line, "ox oy oz dx dy dz".
-        #[arg(long)]
-        rays: Option<String>,
-        /// Report only the hits that may be the nearest.
-        #[arg(long)]
-        nearest: bool,
-        /// Print JSON instead of text.
-        #[arg(long)]
-        json: bool,
-    },
+    /// Every hit of rays with a Bézier or B-spline patch, each certified.
+    Ray(rootclip::ray::cli::RayArgs),
     /// Print the exact Bernstein–Bézier coefficients of a polynomial in u, v.
     Bernstein {
         /// The polynomial, e.g. "10*(u-1/2)*(u-1/4)*(u-1/8) + 1/4 - v".
@@ -173,21 +154,7 @@ fn run(cli: Cli) -> Result<String, Error> {
     match cli.command {
         Command::Bernstein { f, domain, json } => bernstein(&f, domain, json),
         Command::Tables { json, split } => tables_cmd(json, split),
-        Command::Ray {
-            patch,
-            origin,
-            dir,
-            rays,
-            nearest,
-            json,
-        } => rootclip::ray::cli::run(&rootclip::ray::cli::RayArgs {
-            patch,
-            origin,
-            dir,
-            rays,
-            nearest,
-            json,
-        }),
+        Command::Ray(args) => rootclip::ray::cli::run(&args),
         Command::Solve {
             f,
             g,

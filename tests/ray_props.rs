@@ -17,7 +17,10 @@ use glam::DVec3;
 use proptest::collection::vec;
 use proptest::prelude::*;
 use proptest::test_runner::Config;
-use rootclip::ray::{cli, default_options, intersect, Degeneracy, Hit, Patch, Ray, RayOutcome, TensorPatch, TriPatch};
+use rootclip::ray::{
+    cli, default_options, intersect, intersect_with, Degeneracy, Hit, Patch, Query, Ray, RayOptions, RayOutcome,
+    TensorPatch, TensorRoute, TriPatch,
+};
 use rootclip::Error;
 
 // ---------------------------------------------------------------------------
@@ -262,6 +265,58 @@ proptest! {
         }
     }
 
+    /// The rectangle route (default) against the triangle route on random
+    /// rational tensor patches and random rays through their box: the same
+    /// certified hits (boxes overlap one to one), both passing the
+    /// independent check; and the queries: `Nearest` returns the first
+    /// certified hit of the full list, `Any` a certified hit of it.
+    #[test]
+    fn routes_and_queries_agree(
+        m in 1usize..=3,
+        n in 1usize..=3,
+        offsets in vec(-1.0f64..1.0, 48),
+        weights in prop::option::of(vec(0.5f64..2.0, 16)),
+        o in prop::array::uniform3(-0.5f64..1.5),
+        target in prop::array::uniform2(0.0f64..1.0),
+        behind in any::<bool>(),
+    ) {
+        let w = weights.map(|w| w[..(m + 1) * (n + 1)].to_vec());
+        let patch: Patch = tensor_patch(m, n, &offsets, w).into();
+        // Origins above the patch, or (behind) inside its box so that some
+        // hits have t < 0 and must be dropped by the pruning.
+        let z = if behind { 0.0 } else { 2.0 + o[2] };
+        let origin = DVec3::new(o[0], o[1], z);
+        let aim = DVec3::new(target[0], target[1], -0.25);
+        let ray = Ray::new(origin, aim - origin).unwrap();
+        let run = |route, query| match intersect_with(&patch, &ray, &RayOptions { route, query, ..RayOptions::default() }).unwrap() {
+            RayOutcome::Hits(h) => h.hits,
+            other => panic!("unexpected {other:?}"),
+        };
+        let rect = run(TensorRoute::Rect, Query::All);
+        let tri = run(TensorRoute::Triangles, Query::All);
+        check_hits(&patch, &ray, &rect);
+        check_hits(&patch, &ray, &tri);
+        let overlap = |a: &Hit, b: &Hit| a.bx.u[0] <= b.bx.u[1] && b.bx.u[0] <= a.bx.u[1] && a.bx.v[0] <= b.bx.v[1] && b.bx.v[0] <= a.bx.v[1];
+        let cert = |h: &[Hit]| h.iter().filter(|x| x.certified).cloned().collect::<Vec<_>>();
+        let (cr, ct) = (cert(&rect), cert(&tri));
+        prop_assert_eq!(cr.len(), ct.len(), "rect {:?}\ntri {:?}", rect, tri);
+        for h in &cr {
+            prop_assert!(ct.iter().filter(|x| overlap(h, x)).count() == 1, "{:?} not matched in {:?}", h, tri);
+        }
+        let near = run(TensorRoute::Rect, Query::Nearest);
+        match (cr.first(), near.iter().find(|h| h.certified)) {
+            (Some(a), Some(b)) => prop_assert!(overlap(a, b) && near.iter().all(|h| h.bx.t[0] <= a.bx.t[1])),
+            (a, b) => prop_assert_eq!(a.is_some(), b.is_some()),
+        }
+        let any = run(TensorRoute::Rect, Query::Any);
+        for h in any.iter().filter(|h| h.certified) {
+            prop_assert!(cr.iter().any(|x| overlap(h, x)));
+        }
+        // Any finds a certified hit with t provably ≥ 0 exactly when there is one.
+        let proper = |h: &Hit| h.certified && !h.t_straddles_zero;
+        prop_assert_eq!(any.iter().any(proper), cr.iter().any(proper));
+    }
+
     /// Rays outside the control net's bounding box, parallel to an axis
     /// or pointing away from the box, hit nothing.
     #[test]
@@ -503,5 +558,88 @@ fn seed000_example1_fixture() {
         let h = &hits[0];
         assert!(gap(h.bx.u, pu) <= 1e-9 && gap(h.bx.v, pv) <= 1e-9, "{h:?}");
         assert_eq!(h.certified, r["kind"] == "simple");
+    }
+}
+
+/// The binary on a batch (run in parallel): output in input order and equal
+/// to the library's answer ray by ray; `--nearest`, `--any` and
+/// `--route triangles` agree with the default all-hits run.
+#[test]
+fn cli_batch_queries_and_routes() {
+    let fixture = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/seed000_example1.json");
+    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(fixture).unwrap()).unwrap();
+    let dir = std::env::temp_dir().join(format!("rootclip_ray_batch_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let patch_path = dir.join("patch.json");
+    std::fs::write(&patch_path, v["patch"].to_string()).unwrap();
+    let patch = cli::parse_patch(&v["patch"].to_string()).unwrap();
+    let rays = rootclip::ray::sample::aimed_rays(&patch, 60, 12.0, 7);
+    let text: String = rays
+        .iter()
+        .map(|r| {
+            let (o, d) = (r.origin(), r.dir());
+            format!("{:e} {:e} {:e} {:e} {:e} {:e}\n", o.x, o.y, o.z, d.x, d.y, d.z)
+        })
+        .collect();
+    let rays_path = dir.join("rays.txt");
+    std::fs::write(&rays_path, text).unwrap();
+    let run = |extra: &[&str]| -> Vec<serde_json::Value> {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_rootclip"))
+            .args([
+                "ray",
+                "--patch",
+                patch_path.to_str().unwrap(),
+                "--rays",
+                rays_path.to_str().unwrap(),
+                "--json",
+            ])
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        v["rays"].as_array().unwrap().clone()
+    };
+    let all = run(&[]);
+    assert_eq!(all.len(), rays.len());
+    let t_of = |h: &serde_json::Value| h["t"].as_f64().unwrap();
+    for (k, (entry, ray)) in all.iter().zip(&rays).enumerate() {
+        let RayOutcome::Hits(lib) = intersect(&patch, ray, &default_options()).unwrap() else {
+            panic!("ray {k} degenerate")
+        };
+        let hits = entry["hits"].as_array().unwrap();
+        assert_eq!(hits.len(), lib.hits.len(), "ray {k}");
+        for (h, l) in hits.iter().zip(&lib.hits) {
+            // (The test profile and the release binary may round the box
+            // midpoints differently by an ulp.)
+            assert!(
+                (t_of(h) - l.t).abs() <= 1e-12 * (1.0 + l.t.abs()),
+                "ray {k} out of order or different"
+            );
+        }
+    }
+    let with_hits = all.iter().filter(|e| !e["hits"].as_array().unwrap().is_empty()).count();
+    assert!(with_hits > 10, "the batch should hit the patch often ({with_hits})");
+    for mode in [&["--nearest"][..], &["--any"][..]] {
+        let q = run(mode);
+        for (k, (a, b)) in all.iter().zip(&q).enumerate() {
+            let (a, b) = (a["hits"].as_array().unwrap(), b["hits"].as_array().unwrap());
+            assert_eq!(a.is_empty(), b.is_empty(), "{mode:?} ray {k}");
+            if let (Some(first), Some(got)) = (a.first(), b.first()) {
+                let close = |x: &serde_json::Value| (t_of(x) - t_of(got)).abs() <= 1e-9 * (1.0 + t_of(x));
+                assert!(a.iter().any(close), "{mode:?} ray {k}: not one of the hits");
+                if mode[0] == "--nearest" {
+                    assert!((t_of(first) - t_of(got)).abs() <= 1e-9 * (1.0 + t_of(first)), "ray {k}");
+                }
+            }
+        }
+    }
+    let tri = run(&["--route", "triangles"]);
+    for (k, (a, b)) in all.iter().zip(&tri).enumerate() {
+        let (a, b) = (a["hits"].as_array().unwrap(), b["hits"].as_array().unwrap());
+        assert_eq!(a.len(), b.len(), "ray {k}");
+        for (x, y) in a.iter().zip(b) {
+            assert!((t_of(x) - t_of(y)).abs() <= 1e-9 * (1.0 + t_of(x)), "ray {k}");
+        }
     }
 }

@@ -59,11 +59,10 @@
 pub mod merge;
 
 use super::patch::{Patch, TensorPatch, MAX_DEGREE};
-use super::{Degeneracy, Hit, HitBox, Ray, RayHits, RayOutcome};
+use super::{Degeneracy, Hit, HitBox, Query, Ray, RayHits, RayOptions, RayOutcome};
 use crate::error::{Error, Result};
 use crate::poly::TensorBezier;
 use crate::scalar::{interval, point};
-use crate::solve::SolveOptions;
 use glam::DVec3;
 use inari::Interval;
 
@@ -539,14 +538,24 @@ fn insert_knot<const D: usize>(knots: &mut Vec<f64>, ctrl: &mut Vec<Vec<[f64; D]
 /// assert!(h.complete && h.hits.len() == 1 && h.hits[0].certified);
 /// assert!(h.hits[0].bx.u[0] <= 1.3 + 1e-12 && 1.3 - 1e-12 <= h.hits[0].bx.u[1]);
 /// ```
-pub fn intersect_bspline(surface: &BsplineSurface, ray: &Ray, opts: &SolveOptions) -> Result<RayOutcome> {
+pub fn intersect_bspline(surface: &BsplineSurface, ray: &Ray, opts: &RayOptions) -> Result<RayOutcome> {
+    // Each piece answers `All` (or `Any`, which may stop the loop); the
+    // query is applied to the merged list.
+    let piece_opts = RayOptions {
+        query: if opts.query == Query::Any {
+            Query::Any
+        } else {
+            Query::All
+        },
+        ..opts.clone()
+    };
     let mut found = Vec::new();
     let (mut complete, mut unresolved) = (true, false);
     for (k, piece) in surface.pieces.iter().enumerate() {
         if !box_may_meet(piece.lo, piece.hi, ray) {
             continue;
         }
-        let hits = match super::intersect(&piece.patch, ray, opts)? {
+        let hits = match super::intersect_with(&piece.patch, ray, &piece_opts)? {
             RayOutcome::Hits(h) => h.hits,
             RayOutcome::Degenerate(Degeneracy::ZeroEquation) => {
                 return Ok(RayOutcome::Degenerate(Degeneracy::ZeroEquation))
@@ -557,13 +566,18 @@ pub fn intersect_bspline(surface: &BsplineSurface, ray: &Ray, opts: &SolveOption
                 h.hits
             }
         };
+        let done = opts.query == Query::Any && hits.iter().any(|h| h.certified && !h.t_straddles_zero);
         found.extend(hits.into_iter().map(|h| (to_knot_hit(piece, h), k)));
+        if done {
+            break;
+        }
     }
     let mut hits = merge::merge_knot_line_duplicates(surface, ray, found);
     hits.sort_by(|a, b| a.t.total_cmp(&b.t).then(a.u.total_cmp(&b.u)).then(a.v.total_cmp(&b.v)));
     Ok(if unresolved {
         RayOutcome::Degenerate(Degeneracy::Unresolved(RayHits { complete, hits }))
     } else {
+        super::select(&mut hits, opts.query);
         RayOutcome::Hits(RayHits { complete: true, hits })
     })
 }

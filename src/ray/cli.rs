@@ -13,29 +13,57 @@
 //! ray in input order; a degenerate ray has `"complete": false` and a
 //! `"degenerate"` reason.
 
-use super::{default_options, intersect, BsplineSurface, Hit, Patch, Ray, RayOutcome, TensorPatch, TriPatch};
+use super::{
+    intersect_with, BsplineSurface, Hit, Patch, Query, Ray, RayOptions, RayOutcome, TensorPatch, TensorRoute, TriPatch,
+};
 use crate::error::{Error, Result};
 use glam::DVec3;
+use rayon::prelude::*;
 use serde_json::{json, Value};
 
 /// Arguments of `rootclip ray`.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, clap::Args)]
 pub struct RayArgs {
-    /// Path of PATCH.json.
+    /// PATCH.json: {"type":"triangle"|"tensor"|"bspline","degree":..,"points":[[x,y,z],..],"weights":[..]}
+    /// (B-splines also "knots_u", "knots_v").
+    #[arg(long)]
     pub patch: String,
-    /// `x,y,z` of a single ray's origin.
+    /// Origin x,y,z of a single ray (with --dir).
+    #[arg(long, allow_hyphen_values = true)]
     pub origin: Option<String>,
-    /// `x,y,z` of a single ray's direction.
+    /// Direction x,y,z of a single ray (with --origin; not normalized).
+    #[arg(long, allow_hyphen_values = true)]
     pub dir: Option<String>,
-    /// Path of RAYS.txt.
+    /// RAYS.txt: one ray per line, "ox oy oz dx dy dz".
+    #[arg(long)]
     pub rays: Option<String>,
-    /// Report only the hits that may be the nearest.
+    /// Only the hits that may be the nearest (a single certified hit is the
+    /// proven nearest); regions provably farther are never explored.
+    #[arg(long, conflicts_with = "any")]
     pub nearest: bool,
-    /// JSON output.
+    /// Any one certified hit (shadow rays): the search stops at the first.
+    #[arg(long)]
+    pub any: bool,
+    /// How tensor patches are solved: natively on boxes, or as two triangles.
+    #[arg(long, value_enum, default_value = "rect")]
+    pub route: RouteArg,
+    /// Print JSON instead of text.
+    #[arg(long)]
     pub json: bool,
 }
 
-/// Runs the command and returns its output.
+/// `--route` values.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum RouteArg {
+    /// Bézier clipping on boxes (default; faster).
+    #[default]
+    Rect,
+    /// Two triangles of degree m + n, hybrid clipping.
+    Triangles,
+}
+
+/// Runs the command and returns its output. Batches run in parallel (rayon),
+/// with a progress bar on a terminal; the output is in input order.
 pub fn run(args: &RayArgs) -> Result<String> {
     let text = read(&args.patch)?;
     let patch = parse_patch(&text)?;
@@ -48,18 +76,41 @@ pub fn run(args: &RayArgs) -> Result<String> {
             ))
         }
     };
-    let opts = default_options();
+    let opts = RayOptions {
+        route: match args.route {
+            RouteArg::Rect => TensorRoute::Rect,
+            RouteArg::Triangles => TensorRoute::Triangles,
+        },
+        query: if args.nearest {
+            Query::Nearest
+        } else if args.any {
+            Query::Any
+        } else {
+            Query::All
+        },
+        ..RayOptions::default()
+    };
+    let bar = indicatif::ProgressBar::new(rays.len() as u64);
+    if rays.len() < 1000 {
+        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    }
     let outcomes = rays
-        .iter()
-        .map(|r| intersect(&patch, r, &opts))
+        .par_iter()
+        .map(|r| {
+            let out = intersect_with(&patch, r, &opts);
+            bar.inc(1);
+            out
+        })
         .collect::<Result<Vec<_>>>()?;
+    bar.finish_and_clear();
+    let nearest = args.nearest;
     Ok(if args.json {
-        json!({"rays": outcomes.iter().map(|o| outcome_json(o, args.nearest)).collect::<Vec<_>>()}).to_string()
+        json!({"rays": outcomes.iter().map(|o| outcome_json(o, nearest)).collect::<Vec<_>>()}).to_string()
     } else {
         outcomes
             .iter()
             .enumerate()
-            .map(|(k, o)| outcome_text(k, o, args.nearest))
+            .map(|(k, o)| outcome_text(k, o, nearest))
             .collect::<Vec<_>>()
             .join("\n")
     })

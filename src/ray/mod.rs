@@ -288,7 +288,7 @@ pub fn intersect_with(patch: &Patch, ray: &Ray, opts: &RayOptions) -> Result<Ray
     }
     let planes = Planes::of(ray);
     let solved = match patch {
-        Patch::Bspline(s) => return bspline::intersect_bspline(s, ray, &opts.solve),
+        Patch::Bspline(s) => return bspline::intersect_bspline(s, ray, opts),
         Patch::Triangle(p) => {
             let [f, g] = reduce(p.inet(), &planes);
             let n = p.degree();
@@ -319,7 +319,7 @@ pub fn intersect_with(patch: &Patch, ray: &Ray, opts: &RayOptions) -> Result<Ray
         Patch::Triangle(p) => collect_hits(&sol, p.inet(), patch, &planes),
         Patch::Tensor(p) => collect_hits(&sol, p.inet(), patch, &planes),
         // Returned by the first match; delegating again keeps this one total.
-        Patch::Bspline(s) => return bspline::intersect_bspline(s, ray, &opts.solve),
+        Patch::Bspline(s) => return bspline::intersect_bspline(s, ray, opts),
     };
     if !sol.complete || sol.clusters.len() > MAX_CLUSTERS {
         return Ok(RayOutcome::Degenerate(Degeneracy::Unresolved(RayHits {
