@@ -431,12 +431,13 @@ fn intersect_rect(p: &TensorPatch, patch: &Patch, ray: &Ray, opts: &RayOptions) 
                 return None;
             }
             let (u, v) = (0.5 * (bx.u[0] + bx.u[1]), 0.5 * (bx.v[0] + bx.v[1]));
+            let (point, normal) = patch.point_and_normal(u, v);
             Some(Hit {
                 t: t.mid(),
                 u,
                 v,
-                point: patch.eval(u, v),
-                normal: patch.normal(u, v),
+                point,
+                normal,
                 certified,
                 t_straddles_zero: t.lo <= 0.0,
                 bx: HitBox {

@@ -99,24 +99,36 @@ pub(crate) trait Bb<S: Scalar>: Clone {
     }
 }
 
+/// `[p, ∂p/∂u, ∂p/∂v]` of a tensor BB polynomial on `[0, 1]²` in `f64`, on
+/// the stack ([`uni_jet_f64`] row by row, then on the columns).
+fn tensor_jet_f64(c: &[f64], m: usize, n: usize, u: f64, v: f64) -> [f64; 3] {
+    let mut vals = [0.0f64; MAX_DEGREE + 1];
+    let mut dvs = [0.0f64; MAX_DEGREE + 1];
+    let mut row = [0.0f64; MAX_DEGREE + 1];
+    for (i, line) in c.chunks_exact(n + 1).take(m + 1).enumerate() {
+        row[..=n].copy_from_slice(line);
+        (vals[i], dvs[i]) = uni_jet_f64(&mut row[..=n], v);
+    }
+    let (p, pu) = uni_jet_f64(&mut vals[..=m], u);
+    let (pv, _) = uni_jet_f64(&mut dvs[..=m], u);
+    [p, pu, pv]
+}
+
 /// Value and derivative of a univariate BB polynomial on `[0, 1]` at `t`:
 /// de Casteljau stopped one level early leaves `p₀, p₁`, and then
 /// `p = (1 − t)p₀ + t p₁`, `p' = k (p₁ − p₀)`.
-fn uni_jet<S: Scalar>(c: &mut [S], t: &S) -> (S, S) {
+fn uni_jet_f64(c: &mut [f64], t: f64) -> (f64, f64) {
     let k = c.len() - 1;
     if k == 0 {
-        return (c[0].clone(), S::zero());
+        return (c[0], 0.0);
     }
-    let s = S::one() - t.clone();
+    let s = 1.0 - t;
     for r in 1..k {
         for i in 0..=k - r {
-            c[i] = s.clone() * c[i].clone() + t.clone() * c[i + 1].clone();
+            c[i] = s * c[i] + t * c[i + 1];
         }
     }
-    let (p0, p1) = (c[0].clone(), c[1].clone());
-    let value = s * p0.clone() + t.clone() * p1.clone();
-    let kk = S::from_f64(k as f64).expect("a small integer is exact in every kernel");
-    (value, kk * (p1 - p0))
+    (s * c[0] + t * c[1], k as f64 * (c[1] - c[0]))
 }
 
 impl<S: Scalar> Bb<S> for TriBezier<S> {
@@ -134,34 +146,6 @@ impl<S: Scalar> Bb<S> for TriBezier<S> {
 impl<S: Scalar> Bb<S> for TensorBezier<S> {
     fn value(&self, u: S, v: S) -> S {
         self.eval(u, v)
-    }
-    /// Row by row in `v` (value and `v`-derivative), then both columns in
-    /// `u`; the patch nets live on the unit square, so local = domain
-    /// derivatives there (other rectangles take the general path).
-    fn jet(&self, u: S, v: S) -> [S; 3] {
-        let (du, dv) = self.domain();
-        let unit =
-            |d: &[S; 2]| d[0].lower() == 0.0 && d[0].upper() == 0.0 && d[1].lower() == 1.0 && d[1].upper() == 1.0;
-        if !(unit(du) && unit(dv)) {
-            return [
-                self.value(u.clone(), v.clone()),
-                self.d_u().value(u.clone(), v.clone()),
-                self.d_v().value(u, v),
-            ];
-        }
-        let n = self.degree().1;
-        let mut row = Vec::with_capacity(n + 1);
-        let (mut vals, mut dvs): (Vec<S>, Vec<S>) = (Vec::new(), Vec::new());
-        for line in self.coeffs().chunks(n + 1) {
-            row.clear();
-            row.extend_from_slice(line);
-            let (p, dp) = uni_jet(&mut row, &v);
-            vals.push(p);
-            dvs.push(dp);
-        }
-        let (p, pu) = uni_jet(&mut vals, &u);
-        let (pv, _) = uni_jet(&mut dvs, &u);
-        [p, pu, pv]
     }
     fn d_u(&self) -> Self {
         self.deriv(Direction::U)
@@ -321,12 +305,24 @@ impl TensorPatch {
 
     /// `S(u, v)` in `f64`.
     pub fn eval(&self, u: f64, v: f64) -> DVec3 {
-        eval_f64(&self.net, u, v)
+        self.frame(u, v).0
     }
 
     /// `(∂S/∂u, ∂S/∂v)` in `f64`.
     pub fn partials(&self, u: f64, v: f64) -> (DVec3, DVec3) {
-        partials_f64(&self.net, u, v)
+        let (_, su, sv) = self.frame(u, v);
+        (su, sv)
+    }
+
+    /// `(S, ∂S/∂u, ∂S/∂v)` in `f64` in one pass: de Casteljau with
+    /// derivatives on each homogeneous coordinate (no allocation for degrees
+    /// up to [`MAX_DEGREE`]), then the quotient rule.
+    pub fn frame(&self, u: f64, v: f64) -> (DVec3, DVec3, DVec3) {
+        let (m, n) = self.degree;
+        let j: [[f64; 3]; 4] = std::array::from_fn(|k| tensor_jet_f64(self.net.c[k].coeffs(), m, n, u, v));
+        let (x, w) = (DVec3::new(j[0][0], j[1][0], j[2][0]), j[3][0]);
+        let d = |a: usize| (DVec3::new(j[0][a], j[1][a], j[2][a]) * w - x * j[3][a]) / (w * w);
+        (x / w, d(1), d(2))
     }
 
     /// The same surface as two triangular patches of degree `m + n` (the
@@ -381,6 +377,17 @@ impl Patch {
     pub fn normal(&self, u: f64, v: f64) -> DVec3 {
         let (su, sv) = self.partials(u, v);
         su.cross(sv).normalize_or_zero()
+    }
+
+    /// The point and the unit normal at `(u, v)` (one pass for tensors).
+    pub fn point_and_normal(&self, u: f64, v: f64) -> (DVec3, DVec3) {
+        match self {
+            Patch::Tensor(p) => {
+                let (x, su, sv) = p.frame(u, v);
+                (x, su.cross(sv).normalize_or_zero())
+            }
+            _ => (self.eval(u, v), self.normal(u, v)),
+        }
     }
 
     /// The control points.

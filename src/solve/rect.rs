@@ -855,39 +855,49 @@ fn zero_span(p: &[Iv], sh: Shape, d: usize) -> Option<(f64, f64)> {
     Some(((a - MARGIN).max(0.0), (b + MARGIN).min(1.0)))
 }
 
-/// Visits every coefficient line in direction `d` of every polynomial: calls
-/// `op(first index, stride)`.
-fn for_lines(sh: Shape, d: usize, mut op: impl FnMut(usize, usize)) {
-    for p in 0..sh.polys {
-        let base = p * sh.len;
+/// One de Casteljau subdivision of every polynomial of the node in
+/// direction `d` at `t`, keeping `[t, 1]` (`right`) or `[0, t]`.
+///
+/// In `s` (`d = 0`) whole rows are combined at once (`row_i ← lerp(row_i,
+/// row_{i+1})`), a contiguous loop the compiler vectorizes; in `t` each row
+/// is one contiguous line.
+fn subdivide_all(c: &mut [Iv], sh: Shape, d: usize, t: f64, right: bool) {
+    let w = sh.n + 1;
+    for block in c.chunks_exact_mut(sh.len).take(sh.polys) {
         if d == 0 {
-            for j in 0..=sh.n {
-                op(base + j, sh.n + 1);
+            let k = sh.m;
+            for r in 1..=k {
+                if right {
+                    for i in 0..=k - r {
+                        let (head, tail) = block.split_at_mut((i + 1) * w);
+                        for (x, y) in head[i * w..].iter_mut().zip(&tail[..w]) {
+                            *x = Iv::lerp(*x, *y, t);
+                        }
+                    }
+                } else {
+                    for i in (r..=k).rev() {
+                        let (head, tail) = block.split_at_mut(i * w);
+                        for (y, x) in tail[..w].iter_mut().zip(&head[(i - 1) * w..]) {
+                            *y = Iv::lerp(*x, *y, t);
+                        }
+                    }
+                }
             }
         } else {
-            for i in 0..=sh.m {
-                op(base + i * (sh.n + 1), 1);
+            let k = sh.n;
+            for line in block.chunks_exact_mut(w) {
+                for r in 1..=k {
+                    if right {
+                        for i in 0..=k - r {
+                            line[i] = Iv::lerp(line[i], line[i + 1], t);
+                        }
+                    } else {
+                        for i in (r..=k).rev() {
+                            line[i] = Iv::lerp(line[i - 1], line[i], t);
+                        }
+                    }
+                }
             }
-        }
-    }
-}
-
-/// de Casteljau on the line `c[start + r·stride]`, `r = 0..=k`: keeps `[t, 1]`.
-fn keep_right(c: &mut [Iv], start: usize, stride: usize, k: usize, t: f64) {
-    for r in 1..=k {
-        for i in 0..=k - r {
-            let (x, y) = (c[start + i * stride], c[start + (i + 1) * stride]);
-            c[start + i * stride] = Iv::lerp(x, y, t);
-        }
-    }
-}
-
-/// de Casteljau on the line: keeps `[0, t]`.
-fn keep_left(c: &mut [Iv], start: usize, stride: usize, k: usize, t: f64) {
-    for r in 1..=k {
-        for i in (r..=k).rev() {
-            let (x, y) = (c[start + (i - 1) * stride], c[start + i * stride]);
-            c[start + i * stride] = Iv::lerp(x, y, t);
         }
     }
 }
@@ -895,7 +905,6 @@ fn keep_left(c: &mut [Iv], start: usize, stride: usize, k: usize, t: f64) {
 /// Restricts the node to `[α, β]` in direction `d` (module docs: exact
 /// sub-box through float split parameters).
 fn clip(node: &mut Node, sh: Shape, d: usize, alpha: f64, beta: f64) {
-    let k = if d == 0 { sh.m } else { sh.n };
     // γ ≥ (β − α)/(1 − α), so the kept part [α, α + (1 − α)γ] ⊇ [α, β].
     let gamma = if beta >= 1.0 {
         1.0
@@ -904,12 +913,11 @@ fn clip(node: &mut Node, sh: Shape, d: usize, alpha: f64, beta: f64) {
             .next_up()
             .min(1.0)
     };
-    let c = &mut node.c;
     if alpha > 0.0 {
-        for_lines(sh, d, |s, st| keep_right(c, s, st, k, alpha));
+        subdivide_all(&mut node.c, sh, d, alpha, true);
     }
     if gamma < 1.0 {
-        for_lines(sh, d, |s, st| keep_left(c, s, st, k, gamma));
+        subdivide_all(&mut node.c, sh, d, gamma, false);
     }
     let [lo, hi] = node.bx[d];
     // Convex combinations: the endpoint enclosures never grow wider than
@@ -921,11 +929,10 @@ fn clip(node: &mut Node, sh: Shape, d: usize, alpha: f64, beta: f64) {
 
 /// Splits the node at [`SPLIT`] in direction `d`.
 fn split(node: &Node, sh: Shape, d: usize) -> (Node, Node) {
-    let k = if d == 0 { sh.m } else { sh.n };
     let mut left = node.clone();
     let mut right = node.clone();
-    for_lines(sh, d, |s, st| keep_left(&mut left.c, s, st, k, SPLIT));
-    for_lines(sh, d, |s, st| keep_right(&mut right.c, s, st, k, SPLIT));
+    subdivide_all(&mut left.c, sh, d, SPLIT, false);
+    subdivide_all(&mut right.c, sh, d, SPLIT, true);
     let [lo, hi] = node.bx[d];
     let mid = Iv::lerp(lo, hi, SPLIT);
     left.bx[d] = [lo, mid];

@@ -1,0 +1,76 @@
+//! Certified ray queries against seed 000's Example 1 bicubic patch
+//! (tests/data/seed000_example1.json), per batch of 256 fixed rays
+//! ([`aimed_rays`]: about half hit, some twice), one thread:
+//!
+//! * `ray/rect-all`, `ray/rect-nearest`, `ray/rect-any`: the default
+//!   rectangle route with each query;
+//! * `ray/triangles-all`: the same patch as two degree-6 triangles (hybrid
+//!   clipping), the route the rectangle one is measured against;
+//! * `ray/newton`: plain Newton–Raphson from the patch centre on the same
+//!   rays (no proof; it misses hits — `examples/ray_bench` counts them).
+//!
+//! Divide the reported time by 256 for µs per ray. Whole-process batch
+//! timings (10,000 rays, rayon) are in `examples/ray_bench.rs`.
+//!
+//! `cargo bench --bench ray` takes about a minute.
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use rootclip::heuristics::newton_ray_patch;
+use rootclip::ray::sample::aimed_rays;
+use rootclip::ray::{cli, intersect_with, Patch, Query, Ray, RayOptions, TensorRoute};
+use std::hint::black_box;
+use std::time::Duration;
+
+const RAYS: usize = 256;
+
+fn setup() -> (Patch, Vec<Ray>) {
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/seed000_example1.json"))
+        .expect("fixture");
+    let v: serde_json::Value = serde_json::from_str(&text).expect("json");
+    let patch = cli::parse_patch(&v["patch"].to_string()).expect("patch");
+    let rays = aimed_rays(&patch, RAYS, 12.0, 0x9e37_79b9_7f4a_7c15);
+    (patch, rays)
+}
+
+fn bench(c: &mut Criterion) {
+    let (patch, rays) = setup();
+    let mut g = c.benchmark_group("ray");
+    let cases = [
+        ("rect-all", TensorRoute::Rect, Query::All),
+        ("rect-nearest", TensorRoute::Rect, Query::Nearest),
+        ("rect-any", TensorRoute::Rect, Query::Any),
+        ("triangles-all", TensorRoute::Triangles, Query::All),
+    ];
+    for (name, route, query) in cases {
+        let opts = RayOptions {
+            route,
+            query,
+            ..RayOptions::default()
+        };
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                for r in &rays {
+                    black_box(intersect_with(&patch, r, &opts).expect("valid input"));
+                }
+            })
+        });
+    }
+    g.bench_function("newton", |b| {
+        b.iter(|| {
+            for r in &rays {
+                black_box(newton_ray_patch(&patch, r, (0.5, 0.5), 1e-12, 30));
+            }
+        })
+    });
+    g.finish();
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default()
+        .sample_size(10)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(3));
+    targets = bench
+}
+criterion_main!(benches);
