@@ -27,7 +27,9 @@
 use glam::DVec3;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
-use rootclip::ray::{default_options, intersect, Patch, Ray, RayOutcome, TensorPatch, TriPatch};
+use rootclip::ray::{
+    default_options, intersect_with, Patch, Query, Ray, RayOptions, RayOutcome, TensorPatch, TriPatch,
+};
 use rootclip::solve::SolveOptions;
 use std::error::Error;
 use std::fmt::Write as _;
@@ -475,7 +477,12 @@ fn nearest(scene: &Scene, ray: &Ray, opts: &SolveOptions, st: &mut Stats) -> Nea
             break;
         }
         st.calls += 1;
-        match intersect(&scene.objects[k].patch, ray, opts) {
+        let near = RayOptions {
+            solve: *opts,
+            query: Query::Nearest,
+            ..RayOptions::default()
+        };
+        match intersect_with(&scene.objects[k].patch, ray, &near) {
             Ok(RayOutcome::Hits(h)) => {
                 for hit in &h.hits {
                     if hit.certified && !hit.t_straddles_zero {
@@ -513,7 +520,12 @@ fn blocked(scene: &Scene, p: DVec3, opts: &SolveOptions, st: &mut Stats) -> Opti
             continue;
         }
         st.calls += 1;
-        match intersect(&o.patch, &ray, opts) {
+        let any = RayOptions {
+            solve: *opts,
+            query: Query::Any,
+            ..RayOptions::default()
+        };
+        match intersect_with(&o.patch, &ray, &any) {
             Ok(RayOutcome::Hits(h)) => {
                 for hit in &h.hits {
                     if hit.certified && !hit.t_straddles_zero {
@@ -588,7 +600,7 @@ impl Report<'_> {
             "{} patches: the Utah teapot's {} bicubic patches (Newell's data, `examples/data/teapot.txt`), a floor \
              of two flat quadratic triangles, a rational quadratic triangle with quarter-circle edges (blue) and a \
              cubic triangular dome (green). Every shaded pixel is the nearest **certified** hit of its primary ray \
-             (`rootclip::ray::intersect`: a `(u, v)` box proven to hold exactly one intersection); each patch is \
+             (`rootclip::ray::intersect_with`, nearest-hit query for primary rays, any-hit for shadow rays: a `(u, v)` box proven to hold exactly one intersection); each patch is \
              first culled by its control net's bounding box. Lambert shading with {AMBIENT} ambient and one shadow \
              ray per lit pixel{}. Magenta marks pixels whose answer is not proven (a degenerate outcome or an \
              undecided region that may be nearer than the certified hit, or an undecided shadow ray).\n",

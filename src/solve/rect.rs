@@ -1157,6 +1157,7 @@ fn local_krawczyk(c: &[Iv], sh: Shape) -> Local {
     let mut x = k;
     let ym = y.map(|c| c.lo);
     let mut p = [k[0].mid(), k[1].mid()];
+    let mut last = f64::INFINITY;
     for _ in 0..8 {
         let (fv, gv) = (eval_mid(f, sh, p[0], p[1]), eval_mid(g, sh, p[0], p[1]));
         let step = [ym[0] * fv + ym[1] * gv, ym[2] * fv + ym[3] * gv];
@@ -1164,9 +1165,13 @@ fn local_krawczyk(c: &[Iv], sh: Shape) -> Local {
             (p[0] - step[0]).clamp(k[0].lo, k[0].hi),
             (p[1] - step[1]).clamp(k[1].lo, k[1].hi),
         ];
-        if step[0].abs().max(step[1].abs()) < 1e-17 {
+        // Local coordinates are in [0, 1]: a step below a few ulps of 1 is
+        // rounding, and a step that stops shrinking will not improve.
+        let size = step[0].abs().max(step[1].abs());
+        if size < 1e-15 || size > 0.5 * last {
             break;
         }
+        last = size;
     }
     let q = (mm[0].lo.abs().max(mm[0].hi.abs()) + mm[1].lo.abs().max(mm[1].hi.abs()))
         .max(mm[2].lo.abs().max(mm[2].hi.abs()) + mm[3].lo.abs().max(mm[3].hi.abs()));
