@@ -192,12 +192,34 @@ impl BsplineSurface {
                 "the Bézier pieces need a refined net of {size} control points (limit {MAX_REFINED_NET})"
             )));
         }
+        // Knot insertion runs in f64. Each insertion replaces a point by
+        // fl((1 − α̃)a + α̃ b) with α̃ = fl((x − t_i)/(t_{i+p} − t_i)), |α̃ − α| ≤ 3u
+        // (u = 2⁻⁵³): its error against the exact (1 − α)A + αB is at most the
+        // previous error plus |α̃ − α||b − a| + 4u(|a| + |b|) ≤ 14u·M, with M the
+        // largest homogeneous coordinate (convex combinations never exceed
+        // it). A point passes through at most one step per insertion, and
+        // the homogeneous products and the pieces' (h/w)·w round trip add a
+        // few u·M more: so every piece's exact net lies within
+        // 16u·M·(K + 4) of the computed one, K = insertions, and the pieces
+        // are widened by that much (`TensorPatch::widen`) — their
+        // certificates then hold for the exact surface.
+        let hom_max = points
+            .iter()
+            .enumerate()
+            .map(|(k, pt)| {
+                let w = weights.as_deref().map_or(1.0, |w| w[k]);
+                (pt.abs() * w.abs()).max_element().max(w.abs())
+            })
+            .fold(0.0f64, f64::max);
+        let insertions = p * breaks_u.len() + q * breaks_v.len();
+        let err = 16.0 * f64::EPSILON / 2.0 * hom_max * (insertions + 4) as f64;
         let grid = Grid {
             p,
             q,
             knots_u: &knots_u,
             knots_v: &knots_v,
             nv,
+            err,
         };
         let pieces = if rational {
             let w = weights.as_deref().unwrap_or(&[]);
@@ -388,6 +410,8 @@ struct Grid<'a> {
     knots_u: &'a [f64],
     knots_v: &'a [f64],
     nv: usize,
+    /// Bound on the f64 knot insertion's error per homogeneous coordinate.
+    err: f64,
 }
 
 impl Grid<'_> {
@@ -418,7 +442,7 @@ impl Grid<'_> {
                 let weights = (ws.len() == pts.len()).then_some(ws);
                 let u = [ex_u.breaks[a], ex_u.breaks[a + 1]];
                 let v = [ex_v.breaks[b], ex_v.breaks[b + 1]];
-                pieces.push(BezierPiece::new(self.p, self.q, pts, weights, u, v)?);
+                pieces.push(BezierPiece::new(self.p, self.q, pts, weights, u, v, self.err)?);
             }
         }
         Ok(pieces)
@@ -426,12 +450,21 @@ impl Grid<'_> {
 }
 
 impl BezierPiece {
-    fn new(p: usize, q: usize, pts: Vec<DVec3>, weights: Option<Vec<f64>>, u: [f64; 2], v: [f64; 2]) -> Result<Self> {
+    fn new(
+        p: usize,
+        q: usize,
+        pts: Vec<DVec3>,
+        weights: Option<Vec<f64>>,
+        u: [f64; 2],
+        v: [f64; 2],
+        err: f64,
+    ) -> Result<Self> {
         let (lo, hi) = pts.iter().fold(
             (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
             |(l, h), x| (l.min(*x), h.max(*x)),
         );
-        let tensor = TensorPatch::new(p, q, pts, weights)?;
+        let mut tensor = TensorPatch::new(p, q, pts, weights)?;
+        tensor.widen(err)?;
         let rect = |r: [f64; 2]| [point(r[0]), point(r[1])];
         let inet = tensor.inet();
         let hom = [0, 1, 2, 3].map(|c| TensorBezier::new(p, q, inet.c[c].coeffs().to_vec(), rect(u), rect(v)));

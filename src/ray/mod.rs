@@ -368,13 +368,12 @@ fn intersect_rect(p: &TensorPatch, patch: &Patch, ray: &Ray, opts: &RayOptions) 
         Vec::with_capacity(len),
     );
     let weights = p.weights();
-    for (k, pt) in p.points().iter().enumerate() {
+    for hom in p.ivnet() {
+        // (wP − w o), from the homogeneous enclosures (w = 1 exactly for a
+        // polynomial patch).
         let q: [Iv; 3] = match weights {
-            None => std::array::from_fn(|c| Iv::point(pt[c]).sub(Iv::point(o[c]))),
-            Some(w) => {
-                let w = Iv::point(w[k]);
-                std::array::from_fn(|c| w.mul(Iv::point(pt[c])).sub(w.mul(Iv::point(o[c]))))
-            }
+            None => std::array::from_fn(|c| hom[c].sub(Iv::point(o[c]))),
+            Some(_) => std::array::from_fn(|c| hom[c].sub(hom[3].mul(Iv::point(o[c])))),
         };
         f.push(dot(&n1, &q));
         g.push(dot(&n2, &q));
@@ -391,7 +390,7 @@ fn intersect_rect(p: &TensorPatch, patch: &Patch, ray: &Ray, opts: &RayOptions) 
     if maybe_zero(&f) || maybe_zero(&g) {
         return Ok(RayOutcome::Degenerate(Degeneracy::ZeroEquation));
     }
-    let den: Option<Vec<Iv>> = weights.map(|w| w.iter().map(|&x| Iv::point(x)).collect());
+    let den: Option<Vec<Iv>> = weights.map(|_| p.ivnet().iter().map(|h| h[3]).collect());
     let unit = [[Iv::point(0.0), Iv::point(1.0)]; 2];
     let problem = RectProblem {
         m,

@@ -10,7 +10,8 @@
 use super::bspline::BsplineSurface;
 use crate::error::{Error, Result};
 use crate::poly::{tri_len, Direction, TensorBezier, TriBezier};
-use crate::scalar::point;
+use crate::scalar::iv::{down, up, Iv};
+use crate::scalar::{interval, point};
 use crate::Scalar;
 use glam::DVec3;
 use inari::Interval;
@@ -42,6 +43,9 @@ pub struct TensorPatch {
     weights: Option<Vec<f64>>,
     net: Net<TensorBezier<f64>>,
     inet: Net<TensorBezier<Interval>>,
+    /// The homogeneous net `(wx, wy, wz, w)` per control point as [`Iv`]
+    /// enclosures (the same sets as `inet`), for the box route's hot path.
+    ivnet: Vec<[Iv; 4]>,
 }
 
 /// A Bézier patch of either kind, or a B-spline/NURBS surface (intersected
@@ -279,13 +283,49 @@ impl TensorPatch {
         let inet = Net {
             c: [0, 1, 2, 3].map(|c| TensorBezier::on_unit_square(m, n, column(&iv, c))),
         };
+        let ivnet = iv.iter().map(|r| r.map(|x| Iv::new(x.inf(), x.sup()))).collect();
         Ok(Self {
             degree: (m, n),
             points,
             weights,
             net: lift(net)?,
             inet: lift(inet)?,
+            ivnet,
         })
+    }
+
+    /// Widens every homogeneous coordinate's enclosure by `err` on each side
+    /// (the weight's too when the patch is rational): the patch then stands
+    /// for every net within `err` of its points, e.g. the exact Bézier pieces
+    /// of a B-spline whose knot insertion ran in `f64` with that error bound.
+    pub(crate) fn widen(&mut self, err: f64) -> Result<()> {
+        let rational = self.weights.is_some();
+        for row in &mut self.ivnet {
+            for (c, x) in row.iter_mut().enumerate() {
+                if c < 3 || rational {
+                    *x = Iv::new(down(x.lo - err), up(x.hi + err));
+                }
+            }
+        }
+        if let Some(k) = self.ivnet.iter().position(|r| !(r[3].lo > 0.0)) {
+            return Err(Error::Degenerate(format!(
+                "weight {k} may not be positive within the knot insertion's error bound"
+            )));
+        }
+        let (m, n) = self.degree;
+        let inet = Net {
+            c: [0, 1, 2, 3].map(|c| {
+                let col = self.ivnet.iter().map(|r| interval(r[c].lo, r[c].hi)).collect();
+                TensorBezier::on_unit_square(m, n, col)
+            }),
+        };
+        self.inet = lift(inet)?;
+        Ok(())
+    }
+
+    /// The homogeneous net as [`Iv`] enclosures, row-major.
+    pub(crate) fn ivnet(&self) -> &[[Iv; 4]] {
+        &self.ivnet
     }
 
     /// The bidegree `(m, n)`.
