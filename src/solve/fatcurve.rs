@@ -29,9 +29,9 @@
 //! which only weakens the clip. If no candidate is possibly feasible, `R` is
 //! empty: the tri-box holds no root.
 
-use super::num::Num;
+use super::num::{Geo, Num};
 use crate::poly::TriBezier;
-use crate::scalar::{Kernel, Sign};
+use crate::scalar::{iv, Kernel, Sign};
 
 /// `a0 + a1 s + a2 t`.
 #[derive(Clone, Copy, Debug)]
@@ -57,6 +57,12 @@ impl<S: Num> Linear<S> {
         }
     }
 
+    fn geo(&self) -> Linear<S::Geo> {
+        Linear { c: self.c.map(S::geo) }
+    }
+}
+
+impl<S: Geo> Linear<S> {
     /// Value at `(s, t)`.
     pub fn eval(&self, s: S, t: S) -> S {
         self.c[0] + self.c[1] * s + self.c[2] * t
@@ -89,6 +95,12 @@ impl<S: Num> Quadratic<S> {
         }
     }
 
+    fn geo(&self) -> Quadratic<S::Geo> {
+        Quadratic { c: self.c.map(S::geo) }
+    }
+}
+
+impl<S: Geo> Quadratic<S> {
     /// Value at `(s, t)`.
     pub fn eval(&self, s: S, t: S) -> S {
         let c = &self.c;
@@ -131,6 +143,16 @@ pub enum Fat<S> {
 }
 
 impl<S: Num> Fat<S> {
+    /// The same fat curve in the geometry kernel (coefficients enclosed).
+    fn geo(&self) -> Fat<S::Geo> {
+        match self {
+            Fat::Line(l, d) => Fat::Line(l.geo(), *d),
+            Fat::Conic(q, d) => Fat::Conic(q.geo(), *d),
+        }
+    }
+}
+
+impl<S: Geo> Fat<S> {
     fn possibly_contains(&self, s: S, t: S) -> bool {
         let (val, d) = match self {
             Fat::Line(l, d) => (l.eval(s, t), *d),
@@ -162,12 +184,26 @@ impl Bounds {
         }
     }
 
-    fn add<S: Num>(&mut self, s: S, t: S) {
+    /// Whether [`Bounds::add`] of this candidate could change anything: it is
+    /// the first one, or it lowers one of the minima. Deciding this before
+    /// the (costlier) feasibility test changes no result.
+    fn could_lower<S: Geo>(&self, s: S, t: S) -> bool {
+        let w = S::pt(1.0) - s - t;
+        !self.any || s.lower() < self.mins[0] || t.lower() < self.mins[1] || w.lower() < self.mins[2]
+    }
+
+    fn add<S: Geo>(&mut self, s: S, t: S) {
         let w = S::pt(1.0) - s - t;
         self.any = true;
         self.mins[0] = self.mins[0].min(s.lower());
         self.mins[1] = self.mins[1].min(t.lower());
         self.mins[2] = self.mins[2].min(w.lower());
+    }
+
+    /// No candidate can change the result any more: it is `Keep([0, 0, 0])`
+    /// (`finish` clamps the minima to `[0, 1]`).
+    fn settled(&self) -> bool {
+        self.any && self.mins.iter().all(|&m| m <= 0.0)
     }
 
     fn finish(self, kernel: Kernel) -> ClipBounds {
@@ -200,88 +236,132 @@ fn keep_or_empty(m: [f64; 3], kernel: Kernel) -> ClipBounds {
 }
 
 /// The clipping bounds of `R = tri-box ∩ fats` (see the module docs).
+///
+/// The candidates are computed in the kernel's geometry arithmetic
+/// ([`Num::Geo`]): for intervals the branchless outward-rounded
+/// [`GeoIv`](super::num::GeoIv), whose enclosures are as rigorous as inari's
+/// (a few floats wider) at a fraction of the cost.
 pub fn clip_against_fat_curves<S: Num>(fats: &[Fat<S>]) -> ClipBounds {
+    let kernel = S::KERNEL;
+    match fats {
+        [a, b] => clip_in(&[a.geo(), b.geo()], kernel),
+        _ => clip_in(&fats.iter().map(Fat::geo).collect::<Vec<_>>(), kernel),
+    }
+}
+
+/// A boundary line with what its candidates need, computed once per line:
+/// `src` tags the two sides of one strip (parallel by construction, never
+/// intersected with each other).
+struct BoundaryLine<G> {
+    src: usize,
+    l: Linear<G>,
+    /// Not proven to miss the unit square.
+    meets: bool,
+    cut: Cut<G>,
+}
+
+/// How a line meets a conic's level curve (see [`line_conic`]).
+enum Cut<G> {
+    /// The line misses `[0, 1]²`, or is `a0 = 0` (no line or every point).
+    Nothing,
+    /// Neither coefficient provably non-zero: the whole segment.
+    Whole,
+    /// `other = m · x + k`, with `x = s` when `by_s`, else `x = t`.
+    Param { by_s: bool, m: G, k: G },
+}
+
+impl<G: Geo> BoundaryLine<G> {
+    fn new(src: usize, l: Linear<G>) -> Self {
+        let meets = meets_unit_square(&l);
+        Self {
+            src,
+            l,
+            meets,
+            cut: if meets { cut_of(&l) } else { Cut::Nothing },
+        }
+    }
+}
+
+fn clip_in<G: Geo>(fats: &[Fat<G>], kernel: Kernel) -> ClipBounds {
+    let (zero, one) = (G::pt(0.0), G::pt(1.0));
     let edges = [
-        Linear {
-            c: [S::pt(0.0), S::pt(1.0), S::pt(0.0)],
-        },
-        Linear {
-            c: [S::pt(0.0), S::pt(0.0), S::pt(1.0)],
-        },
-        Linear {
-            c: [S::pt(-1.0), S::pt(1.0), S::pt(1.0)],
-        },
+        Linear { c: [zero, one, zero] },
+        Linear { c: [zero, zero, one] },
+        Linear { c: [-one, one, one] },
     ];
-    // Boundary lines, tagged by source so the two sides of one strip (parallel
-    // by construction) are never intersected with each other.
-    let mut lines: Vec<(usize, Linear<S>)> = edges.iter().enumerate().map(|(i, l)| (i, *l)).collect();
-    let mut levels: Vec<Quadratic<S>> = Vec::new();
-    let mut tangents: Vec<Linear<S>> = Vec::new();
-    let mut centres: Vec<[Linear<S>; 2]> = Vec::new();
+    let mut lines: Vec<BoundaryLine<G>> = Vec::with_capacity(3 + 2 * fats.len());
+    lines.extend(edges.iter().enumerate().map(|(i, l)| BoundaryLine::new(i, *l)));
+    let mut conics: Vec<(Quadratic<G>, f64)> = Vec::with_capacity(fats.len());
+    let mut tangents: Vec<BoundaryLine<G>> = Vec::with_capacity(3 * fats.len());
+    let mut centres: Vec<[Linear<G>; 2]> = Vec::with_capacity(fats.len());
     for (idx, fat) in fats.iter().enumerate() {
         match fat {
             Fat::Line(l, d) => {
-                lines.push((3 + idx, l.shifted(*d)));
-                lines.push((3 + idx, l.shifted(-*d)));
+                lines.push(BoundaryLine::new(3 + idx, l.shifted(*d)));
+                lines.push(BoundaryLine::new(3 + idx, l.shifted(-*d)));
             }
             Fat::Conic(q, d) => {
-                levels.push(q.shifted(*d));
-                levels.push(q.shifted(-*d));
+                conics.push((*q, *d));
                 let tl = q.tangency_lines();
-                tangents.extend(tl);
+                tangents.extend(tl.iter().map(|l| BoundaryLine::new(usize::MAX, *l)));
                 centres.push([tl[0], tl[1]]);
             }
         }
     }
-    let feasible = |s: S, t: S| {
+    let feasible = |s: G, t: G| {
         s.possibly_ge(0.0)
             && t.possibly_ge(0.0)
-            && (S::pt(1.0) - s - t).possibly_ge(0.0)
+            && (G::pt(1.0) - s - t).possibly_ge(0.0)
             && fats.iter().all(|f| f.possibly_contains(s, t))
     };
     let mut bounds = Bounds::new();
-    let mut push = |pts: &[[S; 2]]| {
-        for &[s, t] in pts {
-            if feasible(s, t) {
-                bounds.add(s, t);
-            }
+    let mut push = |[s, t]: [G; 2]| {
+        if bounds.could_lower(s, t) && feasible(s, t) {
+            bounds.add(s, t);
         }
+        bounds.settled()
     };
-    for a in 0..lines.len() {
-        for b in a + 1..lines.len() {
-            if lines[a].0 != lines[b].0 {
-                push(&line_line(&lines[a].1, &lines[b].1));
+    // Each loop stops as soon as the result is settled (`push` says so).
+    'pairs: {
+        for (a, la) in lines.iter().enumerate() {
+            for lb in &lines[a + 1..] {
+                if la.src != lb.src && la.meets && lb.meets && line_line(&la.l, &lb.l, &mut push) {
+                    break 'pairs;
+                }
+            }
+        }
+        for (q, d) in &conics {
+            // The two level curves `Q = ±δ` differ in the constant term only.
+            let levels = [q.shifted(*d).c[0], q.shifted(-*d).c[0]];
+            for line in lines.iter().chain(&tangents) {
+                if line_conic(&line.cut, q, levels, &mut push) {
+                    break 'pairs;
+                }
+            }
+        }
+        for [a, b] in &centres {
+            if meets_unit_square(a) && meets_unit_square(b) && line_line(a, b, &mut push) {
+                break 'pairs;
             }
         }
     }
-    for q in &levels {
-        for (_, l) in &lines {
-            push(&line_conic(l, q));
-        }
-        for l in &tangents {
-            push(&line_conic(l, q));
-        }
-    }
-    for [a, b] in &centres {
-        push(&line_line(a, b));
-    }
-    bounds.finish(S::KERNEL)
+    bounds.finish(kernel)
 }
 
 /// Whether `a0 + a1 s + a2 t = 0` can meet the unit square `[0, 1]²` (the
 /// tri-box lies inside it): `false` only when proven not to.
-fn meets_unit_square<S: Num>(l: &Linear<S>) -> bool {
-    let unit = S::pt(0.0).hull(S::pt(1.0));
-    let range = l.eval(unit, unit);
-    // For f64 `hull` is the midpoint: fall back to the corner values.
-    if S::KERNEL.is_rigorous() {
+fn meets_unit_square<G: Geo>(l: &Linear<G>) -> bool {
+    if G::RIGOROUS {
+        let unit = G::pt(0.0).hull(G::pt(1.0));
+        let range = l.eval(unit, unit);
         range.possibly_le(0.0) && range.possibly_ge(0.0)
     } else {
+        // For f64 `hull` is the midpoint: use the corner values.
         let v = [
-            l.eval(S::pt(0.0), S::pt(0.0)),
-            l.eval(S::pt(1.0), S::pt(0.0)),
-            l.eval(S::pt(0.0), S::pt(1.0)),
-            l.eval(S::pt(1.0), S::pt(1.0)),
+            l.eval(G::pt(0.0), G::pt(0.0)),
+            l.eval(G::pt(1.0), G::pt(0.0)),
+            l.eval(G::pt(0.0), G::pt(1.0)),
+            l.eval(G::pt(1.0), G::pt(1.0)),
         ];
         let lo = v.iter().map(|x| x.lower()).fold(f64::INFINITY, f64::min);
         let hi = v.iter().map(|x| x.upper()).fold(f64::NEG_INFINITY, f64::max);
@@ -289,121 +369,184 @@ fn meets_unit_square<S: Num>(l: &Linear<S>) -> bool {
     }
 }
 
-/// Enclosures of the intersection of two lines, restricted to `[0, 1]²`.
-/// Exactly parallel lines (determinant provably zero) give nothing: they
-/// never meet in a single point, and where they coincide the minimizers are
-/// end points found through other pairs.
-fn line_line<S: Num>(a: &Linear<S>, b: &Linear<S>) -> Vec<[S; 2]> {
-    if !meets_unit_square(a) || !meets_unit_square(b) {
-        return Vec::new();
-    }
+/// Enclosures of the intersection of two lines that may meet the unit square
+/// ([`meets_unit_square`]), restricted to `[0, 1]²`, handed to `push`; `true`
+/// as soon as `push` returns `true`. Exactly parallel lines (determinant
+/// provably zero) give nothing: they never meet in a single point, and where
+/// they coincide the minimizers are end points found through other pairs.
+fn line_line<G: Geo>(a: &Linear<G>, b: &Linear<G>, push: &mut impl FnMut([G; 2]) -> bool) -> bool {
     let det = a.c[1] * b.c[2] - a.c[2] * b.c[1];
     if det.sign_class() == Sign::Zero {
-        return Vec::new();
+        return false;
     }
     // a1 s + a2 t = −a0, b1 s + b2 t = −b0 (Cramer).
     let ns = a.c[2] * b.c[0] - a.c[0] * b.c[2];
     let nt = a.c[0] * b.c[1] - a.c[1] * b.c[0];
-    let mut out = Vec::new();
-    for s in S::div_pieces(ns, det).into_iter().flatten() {
-        for t in S::div_pieces(nt, det).into_iter().flatten() {
+    let ts = G::div_pieces(nt, det);
+    for s in G::div_pieces(ns, det).into_iter().flatten() {
+        for t in ts.into_iter().flatten() {
             if let (Some(s), Some(t)) = (s.clamp_to(0.0, 1.0), t.clamp_to(0.0, 1.0)) {
-                out.push([s, t]);
+                if push([s, t]) {
+                    return true;
+                }
             }
         }
     }
-    out
+    false
 }
 
-/// Enclosures of the intersection of a line with the level curve `Q = 0`,
-/// restricted to `[0, 1]²`.
-fn line_conic<S: Num>(l: &Linear<S>, q: &Quadratic<S>) -> Vec<[S; 2]> {
-    if !meets_unit_square(l) {
-        return Vec::new();
-    }
+/// The line `l` (which may meet the unit square) as a graph over the
+/// coordinate with the larger coefficient on the other one.
+fn cut_of<G: Geo>(l: &Linear<G>) -> Cut<G> {
     let [a0, a1, a2] = l.c;
     if a1.sign_class() == Sign::Zero && a2.sign_class() == Sign::Zero {
-        return Vec::new(); // "a0 = 0": no line, or every point (see module docs).
+        return Cut::Nothing; // "a0 = 0": no line, or every point (see module docs).
     }
-    // Parametrize by the coordinate with the larger coefficient on the other.
-    let by_s = a2.mag() >= a1.mag() || S::KERNEL.is_rigorous() && a2.nonzero() && !a1.nonzero();
+    let by_s = a2.mag() >= a1.mag() || G::RIGOROUS && a2.nonzero() && !a1.nonzero();
     let (num_a, den, num_k) = if by_s { (a1, a2, a0) } else { (a2, a1, a0) };
     if !den.nonzero() {
-        // Neither coefficient is provably non-zero: the whole segment.
-        let unit = S::pt(0.0).hull(S::pt(1.0));
-        return vec![[unit, unit]];
+        return Cut::Whole;
     }
-    // other = m · x + k
-    let m = -num_a / den;
-    let k = -num_k / den;
+    Cut::Param {
+        by_s,
+        m: -num_a / den,
+        k: -num_k / den,
+    }
+}
+
+/// Enclosures of the intersections of a line (as [`cut_of`] parametrizes it)
+/// with the level curves `Q − Q(0, 0) + c0 = 0` for both `c0` in `levels`,
+/// restricted to `[0, 1]²`, handed to `push`; `true` as soon as `push`
+/// returns `true`. What does not depend on the level is computed once.
+fn line_conic<G: Geo>(cut: &Cut<G>, q: &Quadratic<G>, levels: [G; 2], push: &mut impl FnMut([G; 2]) -> bool) -> bool {
+    let (by_s, m, k) = match *cut {
+        Cut::Nothing => return false,
+        Cut::Whole => {
+            // The same candidate for both levels.
+            let unit = G::pt(0.0).hull(G::pt(1.0));
+            return push([unit, unit]);
+        }
+        Cut::Param { by_s, m, k } => (by_s, m, k),
+    };
     let c = &q.c;
-    let two = S::pt(2.0);
-    let (alpha, beta, gamma) = if by_s {
+    let two = G::pt(2.0);
+    // α x² + β x + γ with γ = c0 + γ1 + γ2.
+    let (alpha, beta, gamma1, gamma2) = if by_s {
         // Q(s, m s + k)
         (
             c[3] + c[4] * m + c[5] * m * m,
             c[1] + c[2] * m + c[4] * k + two * c[5] * m * k,
-            c[0] + c[2] * k + c[5] * k * k,
+            c[2] * k,
+            c[5] * k * k,
         )
     } else {
         // Q(m t + k, t)
         (
             c[5] + c[4] * m + c[3] * m * m,
             c[2] + c[1] * m + c[4] * k + two * c[3] * m * k,
-            c[0] + c[1] * k + c[3] * k * k,
+            c[1] * k,
+            c[3] * k * k,
         )
     };
-    if [alpha, beta, gamma].iter().all(|c| c.sign_class() == Sign::Zero) {
-        // The line lies in the level curve: minimizers on it are the end
-        // points of that boundary piece, found through the other pairs.
-        return Vec::new();
-    }
-    let mut out = Vec::new();
-    for x in quadratic_roots_in_unit(alpha, beta, gamma) {
-        if let Some(y) = (m * x + k).clamp_to(0.0, 1.0) {
-            out.push(if by_s { [x, y] } else { [y, x] });
+    let mut eq = Quad {
+        alpha,
+        beta,
+        gamma: G::pt(0.0), // set per level
+        beta_sq: beta * beta,
+        four_alpha: G::pt(4.0) * alpha,
+    };
+    for c0 in levels {
+        eq.gamma = c0 + gamma1 + gamma2;
+        if [alpha, beta, eq.gamma].iter().all(|c| c.sign_class() == Sign::Zero) {
+            // The line lies in the level curve: minimizers on it are the end
+            // points of that boundary piece, found through the other pairs.
+            continue;
+        }
+        let mut settled = false;
+        roots_in_unit(&eq, &mut |x| {
+            if let Some(y) = (m * x + k).clamp_to(0.0, 1.0) {
+                settled = push(if by_s { [x, y] } else { [y, x] });
+            }
+            settled
+        });
+        if settled {
+            return true;
         }
     }
-    out
+    false
+}
+
+/// `α x² + β x + γ`, with `β²` and `4α` (shared by the two levels of a fat conic).
+struct Quad<G> {
+    alpha: G,
+    beta: G,
+    gamma: G,
+    beta_sq: G,
+    four_alpha: G,
 }
 
 /// Enclosures of every root of `α x² + β x + γ` in `[0, 1]` (for all members
 /// of the coefficient enclosures). When both `α` and `β` may vanish, the
 /// whole of `[0, 1]` is returned.
-pub fn quadratic_roots_in_unit<S: Num>(alpha: S, beta: S, gamma: S) -> Vec<S> {
-    let unit = || S::pt(0.0).hull(S::pt(1.0));
+pub fn quadratic_roots_in_unit<G: Geo>(alpha: G, beta: G, gamma: G) -> Vec<G> {
+    let mut out = Vec::new();
+    let eq = Quad {
+        alpha,
+        beta,
+        gamma,
+        beta_sq: beta * beta,
+        four_alpha: G::pt(4.0) * alpha,
+    };
+    roots_in_unit(&eq, &mut |x| {
+        out.push(x);
+        false
+    });
+    out
+}
+
+/// [`quadratic_roots_in_unit`], each root handed to `keep`; stops once `keep`
+/// returns `true`.
+fn roots_in_unit<G: Geo>(eq: &Quad<G>, keep: &mut impl FnMut(G) -> bool) {
+    let Quad {
+        alpha,
+        beta,
+        gamma,
+        beta_sq,
+        four_alpha,
+    } = *eq;
     // On [0, 1], |α x² + β x| ≤ |α| + |β|: a constant term beyond that has no
     // root there. (Decides the nearly-constant case below without giving up.)
-    if (gamma.abs().lower()) > alpha.mag() + beta.mag() {
-        return Vec::new();
+    // With enclosures the sum is rounded up, so the test is a proof.
+    let bound = alpha.mag() + beta.mag();
+    if gamma.mig() > if G::RIGOROUS { iv::up(bound) } else { bound } {
+        return;
     }
-    let disc = beta * beta - S::pt(4.0) * alpha * gamma;
+    let disc = beta_sq - four_alpha * gamma;
     let Some(sq) = disc.sqrt_nonneg() else {
-        return Vec::new();
+        return;
     };
-    let mut out = Vec::new();
-    let mut keep = |x: S| {
-        if let Some(x) = x.clamp_to(0.0, 1.0) {
-            out.push(x);
-        }
-    };
+    let mut keep_in_unit = |x: G| x.clamp_to(0.0, 1.0).is_some_and(&mut *keep);
     if beta.nonzero() {
         // q = −(β + sign(β)·√D)/2 has |q| ≥ |β|/2 > 0: roots q/α and γ/q.
-        let q = (if beta.lower() > 0.0 { -(beta + sq) } else { sq - beta }) / S::pt(2.0);
-        keep(gamma / q);
-        for piece in S::div_pieces(q, alpha).into_iter().flatten() {
-            keep(piece);
+        let q = (if beta.lower() > 0.0 { -(beta + sq) } else { sq - beta }) / G::pt(2.0);
+        if keep_in_unit(gamma / q) {
+            return;
+        }
+        for piece in G::div_pieces(q, alpha).into_iter().flatten() {
+            if keep_in_unit(piece) {
+                return;
+            }
         }
     } else if alpha.nonzero() {
-        let two_a = S::pt(2.0) * alpha;
-        keep((-beta + sq) / two_a);
-        keep((-beta - sq) / two_a);
-    } else if S::KERNEL.is_rigorous() {
-        out.push(unit());
+        let two_a = G::pt(2.0) * alpha;
+        if !keep_in_unit((-beta + sq) / two_a) {
+            keep_in_unit((-beta - sq) / two_a);
+        }
+    } else if G::RIGOROUS {
+        keep(G::pt(0.0).hull(G::pt(1.0)));
     } else if gamma.sign_class() == Sign::Zero {
-        out.push(S::pt(0.0));
+        keep(G::pt(0.0));
     }
-    out
 }
 
 /// Bézier clipping bounds of one equation (Roth et al. 2000, as used in Liu et
@@ -458,16 +601,17 @@ pub fn intersect_bounds(a: ClipBounds, b: ClipBounds, kernel: Kernel) -> ClipBou
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scalar::{interval, point};
     use inari::Interval;
 
     #[test]
     fn quadratic_roots_enclosed() {
-        let r: Vec<Interval> = quadratic_roots_in_unit(Interval::pt(1.0), Interval::pt(-0.75), Interval::pt(0.125));
+        let r: Vec<Interval> = quadratic_roots_in_unit(point(1.0), point(-0.75), point(0.125));
         // roots 0.25 and 0.5
         assert_eq!(r.len(), 2);
         assert!(r.iter().any(|x| x.contains(0.25)) && r.iter().any(|x| x.contains(0.5)));
         // nearly linear: α = 0 exactly, root at 0.4
-        let r: Vec<Interval> = quadratic_roots_in_unit(Interval::pt(0.0), Interval::pt(1.0), Interval::pt(-0.4));
+        let r: Vec<Interval> = quadratic_roots_in_unit(point(0.0), point(1.0), point(-0.4));
         assert!(r.iter().any(|x| x.contains(0.4)));
     }
 
@@ -475,7 +619,7 @@ mod tests {
     fn strip_clip_is_rigorous() {
         // f = s − 0.3 (exact line), δ = 0: all roots have u = 0.3.
         let l = Linear {
-            c: [Interval::pt(-0.3), Interval::pt(1.0), Interval::pt(0.0)],
+            c: [point(-0.3), point(1.0), point(0.0)],
         };
         let ClipBounds::Keep(m) = clip_against_fat_curves(&[Fat::Line(l, 0.0)]) else {
             panic!()
@@ -483,5 +627,50 @@ mod tests {
         assert!(m[0] <= 0.3 && m[0] > 0.29);
         assert_eq!(m[1], 0.0);
         assert!(m[2] <= 0.0 + 1e-15);
+    }
+
+    /// The fast geometry kernel gives inari's clip bounds: its operations
+    /// have inari's endpoints, except for the outer ends of two-piece
+    /// quotients (rounded a float wider), which can only lower a bound.
+    #[test]
+    fn fast_kernel_matches_inari() {
+        let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut compared = 0;
+        for case in 0..400 {
+            let mut coeff = |scale: f64| {
+                let x = (next() - 0.5) * scale;
+                // Exact zeros and exact points, as in the paper's examples.
+                match case % 4 {
+                    0 => point((x * 8.0).round() / 8.0),
+                    1 => point(x),
+                    _ => interval(x, x + 1e-9 * next()),
+                }
+            };
+            let line = Linear {
+                c: [coeff(1.0), coeff(2.0), coeff(2.0)],
+            };
+            let conic = Quadratic {
+                c: [coeff(1.0), coeff(2.0), coeff(2.0), coeff(2.0), coeff(2.0), coeff(2.0)],
+            };
+            let fats = [Fat::Line(line, 0.05 * next()), Fat::Conic(conic, 0.05 * next())];
+            let fast = clip_against_fat_curves(&fats);
+            let reference = clip_in(&fats, Kernel::Interval);
+            match (fast, reference) {
+                (ClipBounds::Keep(f), ClipBounds::Keep(r)) => {
+                    compared += 1;
+                    for i in 0..3 {
+                        assert!(f[i] <= r[i] && r[i] - f[i] < 1e-12, "case {case}: {f:?} vs {r:?}");
+                    }
+                }
+                (f, r) => assert_eq!(f, r, "case {case}"),
+            }
+        }
+        assert!(compared > 50, "{compared}");
     }
 }
