@@ -307,7 +307,7 @@ impl TensorPatch {
                 }
             }
         }
-        if let Some(k) = self.ivnet.iter().position(|r| !(r[3].lo > 0.0)) {
+        if let Some(k) = self.ivnet.iter().position(|r| r[3].lo.is_nan() || r[3].lo <= 0.0) {
             return Err(Error::Degenerate(format!(
                 "weight {k} may not be positive within the knot insertion's error bound"
             )));
