@@ -317,6 +317,79 @@ proptest! {
         prop_assert_eq!(any.iter().any(proper), cr.iter().any(proper));
     }
 
+    /// Patches with a collapsed edge (the whole row `i = 0` one point: a
+    /// triangle-like tensor patch, whose normal vanishes along that edge)
+    /// and rays aimed at random parameters, near the collapsed edge too:
+    /// the planted hit is found and certified, every hit checks out. And a
+    /// ray aimed exactly at the degenerate corner point is answered (a hit
+    /// there, certified or in an undecided region), never "no hits".
+    #[test]
+    fn collapsed_edge_patches(
+        m in 2usize..=3,
+        n in 1usize..=3,
+        offsets in vec(-1.0f64..1.0, 48),
+        u0 in prop_oneof![0.02f64..0.98, 1e-4f64..1e-2],
+        v0 in 0.02f64..0.98,
+        tilt in prop::array::uniform2(-1.0f64..1.0),
+    ) {
+        let base = tensor_patch(m, n, &offsets, None);
+        let mut pts = base.points().to_vec();
+        for j in 0..=n {
+            pts[j] = pts[0];
+        }
+        let patch: Patch = TensorPatch::new(m, n, pts, None).unwrap().into();
+        prop_assume!(patch.normal(u0, v0).length() > 0.5);
+        let ray = aimed_ray(&patch, u0, v0, tilt, 2.0);
+        check_planted(&patch, &ray, u0, v0);
+        // Onto the collapsed corner, straight down and from a random
+        // direction: a curve of solutions in (u, v) (the whole edge u = 0),
+        // one point in space. Answered at once with a hit there (an undecided
+        // strip along the edge), never "no hits" and never a budget run.
+        let apex = patch.eval(0.0, 0.5);
+        let slanted = DVec3::new(tilt[0], tilt[1], -1.5);
+        for (origin, dir, t_apex) in [(apex + DVec3::Z, -DVec3::Z, 1.0), (apex - 2.0 * slanted, slanted, 2.0)] {
+            let ray = Ray::new(origin, dir).unwrap();
+            let RayOutcome::Hits(h) = intersect(&patch, &ray, &default_options()).unwrap() else {
+                panic!("a ray through the collapsed corner is degenerate");
+            };
+            prop_assert!(h.complete);
+            prop_assert!(
+                h.hits.iter().any(|h| gap(h.bx.t, t_apex) <= 1e-9 && h.bx.u[0] <= 0.0),
+                "no hit at the apex: {:?}", h
+            );
+        }
+    }
+
+    /// Triangular patches with the edge `v = 0` collapsed to a point: planted
+    /// hits are certified, and rays through the apex get a hit there (an
+    /// undecided strip along the edge whose `t` box holds the apex's `t`).
+    #[test]
+    fn collapsed_triangle_edge(
+        n in 2usize..=4,
+        offsets in vec(-1.0f64..1.0, 45),
+        (u0, v0) in (0.02f64..0.96, 0.02f64..0.96).prop_filter("inside", |(u, v)| u + v <= 0.98),
+        tilt in prop::array::uniform2(-1.0f64..1.0),
+    ) {
+        let base = tri_patch(n, &offsets, None);
+        let mut pts = base.points().to_vec();
+        for i in 0..=n {
+            pts[i] = pts[0];
+        }
+        let patch: Patch = TriPatch::new(n, pts, None).unwrap().into();
+        prop_assume!(patch.normal(u0, v0).length() > 0.5);
+        check_planted(&patch, &aimed_ray(&patch, u0, v0, tilt, 2.0), u0, v0);
+        let apex = patch.eval(0.5, 0.0);
+        let ray = Ray::new(apex + DVec3::Z, -DVec3::Z).unwrap();
+        let RayOutcome::Hits(h) = intersect(&patch, &ray, &default_options()).unwrap() else {
+            panic!("a ray through the collapsed edge is degenerate");
+        };
+        prop_assert!(h.complete);
+        prop_assert!(
+            h.hits.iter().any(|h| gap(h.bx.t, 1.0) <= 1e-9 && h.bx.v[0] <= 0.0 && h.bx.t[1] - h.bx.t[0] < 0.5),
+            "no hit at the apex: {:?}", h
+        );
+    }
+
     /// Rays outside the control net's bounding box, parallel to an axis
     /// or pointing away from the box, hit nothing.
     #[test]

@@ -121,6 +121,42 @@ fn degenerate_systems_are_errors() {
     assert!(none.complete && none.roots.is_empty() && none.clusters.is_empty());
 }
 
+/// `f = s·(t − ¼) + e`, `g = s·(s + t − 1) + e` on the unit square, where the
+/// edge coefficients `e` are intervals around 0 (as from a ray through a
+/// collapsed patch edge): the edge `s = 0` may be a curve of roots. It comes
+/// back as one thin undecided strip, the isolated root `(¾, ¼)` certified,
+/// and the run complete; before the strip cut it ran out of budget.
+#[test]
+fn rectangle_edge_where_both_equations_may_vanish_is_one_strip() {
+    use inari::interval;
+    use rootclip::poly::TensorBezier;
+    use rootclip::solve::rect::{solve_rect, RectOptions};
+    use rootclip::solve::ClusterReason;
+    let e = interval!(-1e-18, 1e-18).unwrap();
+    let pt = |x: f64| interval!(x, x).unwrap();
+    // Bidegree (2, 1), row-major (i, j); rows i = 0 vanish up to e.
+    let f = [e, e, pt(-0.125), pt(0.375), pt(-0.25), pt(0.75)];
+    let g = [e, e, pt(-0.5), pt(0.0), pt(0.0), pt(1.0)];
+    let f = TensorBezier::on_unit_square(2, 1, f.to_vec()).unwrap();
+    let g = TensorBezier::on_unit_square(2, 1, g.to_vec()).unwrap();
+    let sol = solve_rect(&f, &g, None, &RectOptions::default()).unwrap().solution;
+    assert!(sol.complete, "{sol:?}");
+    assert!(sol.stats.run.boxes < 100, "{:?}", sol.stats);
+    assert_eq!(sol.roots.len(), 1, "{sol:?}");
+    assert!(sol.roots[0].bx.contains(0.75, 0.25));
+    let strips: Vec<_> = sol
+        .clusters
+        .iter()
+        .filter(|c| c.reason == ClusterReason::VanishingEdge)
+        .collect();
+    assert_eq!(strips.len(), 1, "{sol:?}");
+    let b = strips[0].bx;
+    assert!(
+        b.u[0] <= 0.0 && b.u[1] > 0.0 && b.u[1] < 1e-8 && b.v == [0.0, 1.0],
+        "{b:?}"
+    );
+}
+
 #[test]
 fn square_diagonal_root_is_reported_once() {
     let p = |s: &str| parse_polynomial(s).unwrap();

@@ -604,9 +604,36 @@ fn collect_hits<P: Bb<Interval>>(sol: &Solution, net: &Net<P>, patch: &Patch, pl
     hits
 }
 
+/// Pieces per side of the box over which [`t_over`] evaluates.
+const T_PIECES: f64 = 64.0;
+
+/// An enclosure of `t` over the box `uu × vv`: interval de Casteljau on each
+/// of up to 64 × 64 sub-boxes no wider than 1/64 (they overlap, so they cover
+/// the box), joined. Interval evaluation overestimates in proportion to the
+/// box's width, so a wide undecided region (a strip along a whole edge)
+/// would otherwise get no useful bound; a certified box is one piece.
+fn t_over<P: Bb<Interval>>(net: &Net<P>, planes: &Planes, uu: Interval, vv: Interval) -> Interval {
+    let pieces = |x: Interval| (x.wid() * T_PIECES).ceil().clamp(1.0, T_PIECES) as u32;
+    let piece = |x: Interval, k: u32, a: u32| {
+        if k == 1 {
+            return x;
+        }
+        let at = |j: u32| point(x.inf()) + (point(x.sup()) - point(x.inf())) * point(j as f64) / point(k as f64);
+        interval(at(a).inf(), at(a + 1).sup())
+    };
+    let (ku, kv) = (pieces(uu), pieces(vv));
+    let mut t = Interval::EMPTY;
+    for a in 0..ku {
+        for b in 0..kv {
+            t = t.convex_hull(planes.t_of(eval_interval(net, piece(uu, ku, a), piece(vv, kv, b))));
+        }
+    }
+    t
+}
+
 fn hit_of<P: Bb<Interval>>(bx: Box2, certified: bool, net: &Net<P>, patch: &Patch, planes: &Planes) -> Option<Hit> {
     let (uu, vv) = (interval(bx.u[0], bx.u[1]), interval(bx.v[0], bx.v[1]));
-    let t = planes.t_of(eval_interval(net, uu, vv));
+    let t = t_over(net, planes, uu, vv);
     if t.sup() < 0.0 {
         return None;
     }

@@ -152,6 +152,10 @@ pub struct Run<S> {
     pub nodes: Vec<Node>,
     /// Counters.
     pub counters: Counters,
+    /// Strips `[[u_lo, u_hi], [v_lo, v_hi]]` cut off the root triangle along
+    /// edges where both equations may vanish ([`vanishing_edges`]); they are
+    /// undecided regions, never explored.
+    pub strips: Vec<[[f64; 2]; 2]>,
 }
 
 /// A strict sign shared by every coefficient (the polynomial has that sign on
@@ -176,8 +180,13 @@ pub fn run<S: Num>(
         leftovers: Vec::new(),
         nodes: Vec::new(),
         counters: Counters::default(),
+        strips: Vec::new(),
     };
-    let root = TriBox::unit();
+    if uniform_sign(f).is_some() || uniform_sign(g).is_some() {
+        out.counters.sign_exclusions += 1;
+        return out;
+    }
+    let (root, fa, fb) = cut_vanishing_edges(f, g, &mut out.strips);
     out.nodes.push(Node {
         parent: None,
         level: 0,
@@ -186,14 +195,10 @@ pub fn run<S: Num>(
     let mut stack = vec![Leaf {
         tb: root,
         node: 0,
-        fa: f.clone(),
-        fb: g.clone(),
+        fa,
+        fb,
         exact: false,
     }];
-    if uniform_sign(f).is_some() || uniform_sign(g).is_some() {
-        out.counters.sign_exclusions += 1;
-        return out;
-    }
     while let Some(item) = stack.pop() {
         let node = out.nodes[item.node];
         if item.tb.diam() < limits.eps || too_small(&item.tb) {
@@ -208,6 +213,57 @@ pub fn run<S: Num>(
         step(f, g, exact, item, limits, &mut out, &mut stack, probe);
     }
     out
+}
+
+/// The relative width of the strip cut along an edge where both equations
+/// may vanish: `2⁻³⁰` (exact).
+pub const EDGE_STRIP: f64 = 1.0 / (1u64 << 30) as f64;
+
+/// Which of the edges `u = 0` (coefficients `i = 0`) and `v = 0` (`j = 0`) of
+/// the root triangle carry only coefficients that may be zero, in both `f`
+/// and `g`: then both equations may vanish identically along that edge, a
+/// curve of roots (e.g. a ray through a patch's collapsed edge).
+pub fn vanishing_edges<S: Num>(f: &TriBezier<S>, g: &TriBezier<S>) -> [bool; 2] {
+    let may_be_zero = |c: &S| matches!(c.sign_class(), Sign::Zero | Sign::Straddles);
+    let edge = |p: &TriBezier<S>, along_v: bool| {
+        let n = p.degree();
+        (0..=n).all(|k| may_be_zero(if along_v { p.coeff(0, k) } else { p.coeff(k, 0) }))
+    };
+    [edge(f, true) && edge(g, true), edge(f, false) && edge(g, false)]
+}
+
+/// The root tri-box and the system on it: the unit triangle, or, where both
+/// equations may vanish along the edge `u = 0` or `v = 0`, the verified
+/// triangle `{u ≥ η, v ≥ η'}` ([`EDGE_STRIP`]) with the cut strips pushed to
+/// `strips` as undecided regions.
+///
+/// Why: along such an edge the iteration would cover a curve of roots with
+/// ever smaller tri-boxes until the budget ends the run. Cutting is sound:
+/// the strips are reported, not discarded. (The edge `w = 0` is not cut: its
+/// strip has no thin bounding box; a curve of roots there still ends in a
+/// budget, reported as incomplete.)
+fn cut_vanishing_edges<S: Num>(
+    f: &TriBezier<S>,
+    g: &TriBezier<S>,
+    strips: &mut Vec<[[f64; 2]; 2]>,
+) -> (TriBox, TriBezier<S>, TriBezier<S>) {
+    let unit = TriBox::unit();
+    let cut = vanishing_edges(f, g);
+    let mins = [0, 1].map(|k| if cut[k] { EDGE_STRIP } else { 0.0 });
+    if !cut.contains(&true) {
+        return (unit, f.clone(), g.clone());
+    }
+    let Some(tb) = unit.clip([mins[0], mins[1], 0.0]) else {
+        return (unit, f.clone(), g.clone());
+    };
+    if cut[0] {
+        strips.push([[0.0, EDGE_STRIP], [0.0, 1.0]]);
+    }
+    if cut[1] {
+        strips.push([[0.0, 1.0], [0.0, EDGE_STRIP]]);
+    }
+    let (fa, fb) = (restrict(f, &tb), restrict(g, &tb));
+    (tb, fa, fb)
 }
 
 /// A tri-box whose vertices are a few ulps apart cannot be clipped or split

@@ -153,6 +153,12 @@ pub enum ClusterReason {
     /// Krawczyk neither proved a unique root nor excluded one: a multiple
     /// (double, tangential) root, or roots closer together than `eps`.
     KrawczykUndecided,
+    /// Both equations may vanish identically along an edge of the domain
+    /// (every coefficient of both on that edge contains 0): possibly a curve
+    /// of roots there, as when a ray passes through a patch's collapsed edge.
+    /// The region is a thin strip along the edge; the rest of the domain is
+    /// solved as usual.
+    VanishingEdge,
 }
 
 impl ClusterReason {
@@ -161,6 +167,9 @@ impl ClusterReason {
         match self {
             ClusterReason::KrawczykUndecided => {
                 "Krawczyk undecided: multiple root (tangential curves) or roots closer than eps"
+            }
+            ClusterReason::VanishingEdge => {
+                "both equations may vanish along this domain edge (a curve of roots, e.g. a collapsed patch edge)"
             }
         }
     }
@@ -478,6 +487,7 @@ fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &Solv
     let mut stats = Stats::default();
     let (mut roots, mut clusters) = (Vec::new(), Vec::new());
     let mut leftovers = Vec::new();
+    let mut strips = Vec::new();
     for Piece { f, g, frame, exact } in &pieces {
         // Certify in the piece's own frame: its polynomials are evaluated by
         // interpolation there. (The square's other half would extrapolate with
@@ -512,6 +522,11 @@ fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &Solv
         let (r, undecided) = merge_roots(r, &local, &mut stats);
         roots.extend(r.into_iter().map(to_global));
         clusters.extend(c.into_iter().chain(undecided).map(to_global));
+        strips.extend(run.strips.iter().map(|&[u, v]| Cluster {
+            bx: Box2::of(frame.map_box([interval(u[0], u[1]), interval(v[0], v[1])])),
+            reason: ClusterReason::VanishingEdge,
+            diameters: Vec::new(),
+        }));
         for leaf in &run.leftovers {
             let bx = frame.map_box(local_box(leaf));
             let triangle = leaf.tb.verts.map(|p| frame.map_point(p));
@@ -550,6 +565,7 @@ fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &Solv
                 diameters: c.diameters,
             }
         })
+        .chain(strips)
         .collect();
     Solution {
         complete: leftovers.is_empty(),

@@ -144,6 +144,10 @@ const SINGULAR_FLOOR: f64 = 1e-9;
 /// degrees skip the hull clip and the local Krawczyk test (they still split,
 /// and leaves are certified globally). The ray front end allows degree ≤ 20.
 const STACK: usize = 24;
+/// The relative width of the strip cut along an edge where both equations
+/// may vanish ([`Runner::cut_vanishing_edges`]): `2⁻³⁰`, so that `1 − EDGE_STRIP`
+/// is exact.
+const EDGE_STRIP: f64 = 1.0 / (1u64 << 30) as f64;
 /// Where boxes are split (exact, and so is `1 − SPLIT`).
 const SPLIT: f64 = 63.0 / 128.0;
 /// Coefficients beyond this magnitude are rejected (keeps every difference
@@ -328,13 +332,15 @@ pub(crate) fn solve_rect_iv(p: RectProblem, opts: &RectOptions) -> Result<RectSo
         global: None,
         best: f64::INFINITY,
         stopped_early: false,
+        edge_strips: Vec::new(),
     };
-    let first = Node {
+    let mut first = Node {
         c: buf,
         bx: domain,
         key_lo: f64::NEG_INFINITY,
         id: run.push_trace(u32::MAX, domain.map(|[lo, hi]| [lo.lo, hi.hi])),
     };
+    run.cut_vanishing_edges(&mut first);
     let leftovers = run.drive(first);
     Ok(run.finish(leftovers))
 }
@@ -431,6 +437,8 @@ struct Runner {
     /// Smallest certified upper bound of the objective (for Nearest).
     best: f64,
     stopped_early: bool,
+    /// Strips cut along edges where both equations may vanish.
+    edge_strips: Vec<IBox>,
 }
 
 enum Step {
@@ -689,6 +697,42 @@ impl Runner {
         });
     }
 
+    /// Cuts a strip of relative width [`EDGE_STRIP`] off every edge of the
+    /// domain along which both equations may vanish identically (all their
+    /// coefficients on that edge contain 0) and keeps it as an undecided
+    /// region ([`ClusterReason::VanishingEdge`]).
+    ///
+    /// Why: if `f(0, t) ≡ g(0, t) ≡ 0` the edge is a curve of roots, and
+    /// without the cut the iteration covers it with ever smaller boxes until
+    /// the budget ends the run (a ray through the apex of a patch with a
+    /// collapsed edge does exactly this). Cutting is always sound: the strip
+    /// is reported, not discarded, and the rest is an exact sub-box solved as
+    /// usual, where `f ≈ s·∂f/∂s` is far from rounding noise.
+    fn cut_vanishing_edges(&mut self, node: &mut Node) {
+        let sh = self.shape;
+        for d in 0..2 {
+            for high in [false, true] {
+                let vanishes = (0..2).all(|p| {
+                    let c = &node.c[p * sh.len..(p + 1) * sh.len];
+                    edge_indices(sh, d, high).all(|k| c[k].lo <= 0.0 && c[k].hi >= 0.0)
+                });
+                if !vanishes {
+                    continue;
+                }
+                let [lo, hi] = node.bx[d];
+                let mut strip = node.ibox();
+                if high {
+                    clip(node, sh, d, 0.0, 1.0 - EDGE_STRIP);
+                    strip[d] = interval(node.bx[d][1].lo, hi.hi);
+                } else {
+                    clip(node, sh, d, EDGE_STRIP, 1.0);
+                    strip[d] = interval(lo.lo, node.bx[d][0].hi);
+                }
+                self.edge_strips.push(strip);
+            }
+        }
+    }
+
     /// A box below `eps` that local Krawczyk did not settle.
     fn leaf(&mut self, node: &Node) {
         self.stats.leaves += 1;
@@ -766,6 +810,11 @@ impl Runner {
                     diameters: c.diameters,
                 }
             })
+            .chain(self.edge_strips.iter().map(|&s| Cluster {
+                bx: Box2::of(s),
+                reason: ClusterReason::VanishingEdge,
+                diameters: Vec::new(),
+            }))
             .collect();
         self.stats.max_level = out
             .iter()
@@ -794,6 +843,17 @@ impl Runner {
 
 fn one_signed(c: &[Iv]) -> bool {
     c.iter().all(|x| x.lo > 0.0) || c.iter().all(|x| x.hi < 0.0)
+}
+
+/// The indices of the coefficients on one edge: `d = 0` the rows `i = 0`
+/// (`high = false`) or `i = m`, `d = 1` the columns `j = 0` or `j = n`.
+fn edge_indices(sh: Shape, d: usize, high: bool) -> impl Iterator<Item = usize> {
+    let (count, fixed) = if d == 0 {
+        (sh.n + 1, if high { sh.m } else { 0 })
+    } else {
+        (sh.m + 1, if high { sh.n } else { 0 })
+    };
+    (0..count).map(move |k| if d == 0 { at(sh, fixed, k) } else { at(sh, k, fixed) })
 }
 
 /// Index of coefficient `(i, j)`.
