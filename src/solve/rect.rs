@@ -148,6 +148,8 @@ const STACK: usize = 24;
 /// may vanish ([`Runner::cut_vanishing_edges`]): `2⁻³⁰`, so that `1 − EDGE_STRIP`
 /// is exact.
 const EDGE_STRIP: f64 = 1.0 / (1u64 << 30) as f64;
+/// The smallest ratio of a clipped box's sides ([`keep_aspect`]).
+const MIN_ASPECT: f64 = 1e-3;
 /// Where boxes are split (exact, and so is `1 − SPLIT`).
 const SPLIT: f64 = 63.0 / 128.0;
 /// Coefficients beyond this magnitude are rejected (keeps every difference
@@ -577,16 +579,16 @@ impl Runner {
                 return Step::Done;
             }
         }
-        if w[0].max(w[1]) <= KRAWCZYK_BELOW {
-            // Near a simple root the hulls close in on it from both sides,
-            // leaving it within rounding of an edge, where K(X) ⊂ int X can
-            // never hold. Keep a quarter of the span's width as margin on
-            // each side so that the next Krawczyk test can succeed.
-            for span in spans.iter_mut() {
-                let r = 0.25 * (span.1 - span.0);
-                *span = ((span.0 - r).max(0.0), (span.1 + r).min(1.0));
-            }
+        // Near a simple root the hulls close in on it from both sides, and
+        // one clip can leave it within rounding of an edge, where K(X) ⊂ int X
+        // can never hold again (sub-boxes never grow back). Keep a quarter of
+        // the span's width as margin on each side, at every size, so that the
+        // Krawczyk tests below can succeed.
+        for span in spans.iter_mut() {
+            let r = 0.25 * (span.1 - span.0);
+            *span = ((span.0 - r).max(0.0), (span.1 + r).min(1.0));
         }
+        keep_aspect(&mut spans, w);
         let mut area = 1.0;
         for (d, &(a, b)) in spans.iter().enumerate() {
             if a > 0.0 || b < 1.0 {
@@ -958,6 +960,24 @@ fn subdivide_all(c: &mut [Iv], sh: Shape, d: usize, t: f64, right: bool) {
                     }
                 }
             }
+        }
+    }
+}
+
+/// Widens the kept spans so that neither side of the new box is narrower
+/// than [`MIN_ASPECT`] times the other (widths relative to the domain).
+///
+/// Why: a ray nearly along an iso-line clips one direction to ~1e-14 while
+/// the other is still ~1e-2; the collapsed side is then at the rounding
+/// floor, local Krawczyk cannot succeed, and the box ends as a leaf for the
+/// (slower) global certificate. Keeping more of a span is always sound.
+fn keep_aspect(spans: &mut [(f64, f64); 2], w: [f64; 2]) {
+    let new = [0, 1].map(|d| (spans[d].1 - spans[d].0) * w[d]);
+    for d in 0..2 {
+        let want = MIN_ASPECT * new[1 - d];
+        if new[d] < want && w[d] > 0.0 {
+            let r = 0.5 * (want / w[d] - (spans[d].1 - spans[d].0));
+            spans[d] = ((spans[d].0 - r).max(0.0), (spans[d].1 + r).min(1.0));
         }
     }
 }
