@@ -51,7 +51,8 @@
 
 use super::krawczyk::{IBox, System, Verdict};
 use super::{
-    group_overlapping, hull_of, merge_roots, Box2, Cluster, ClusterReason, Found, Leftover, Root, Solution, Stats,
+    group_overlapping, hull_of, merge_roots, overlaps, Box2, Cluster, ClusterReason, Found, Leftover, Root, Solution,
+    Stats,
 };
 use crate::error::{Error, Result};
 use crate::poly::TensorBezier;
@@ -773,7 +774,13 @@ impl Runner {
 
     fn finish(mut self, left: Vec<Node>) -> RectSolution {
         let found = std::mem::take(&mut self.found);
-        let roots = if found.len() > 1 {
+        // Certified boxes that do not overlap hold distinct roots: the global
+        // system (built with inari, slow) is needed only when some do.
+        let overlapping = found
+            .iter()
+            .enumerate()
+            .any(|(i, a)| found[i + 1..].iter().any(|b| overlaps(a.bx, b.bx)));
+        let roots = if overlapping {
             let mut stats = self.stats;
             let (roots, undecided) = merge_roots(found, self.system(), &mut stats);
             self.stats = stats;
