@@ -299,6 +299,21 @@ proptest! {
         close(tri_fl(&f).eval(fl(&u), fl(&v)), &want, 1e-9 * scale)?;
     }
 
+    /// `jet2` (de Casteljau down to the quadratic net) equals the value,
+    /// gradient and Hessian from the derivative polynomials, exactly.
+    #[test]
+    fn tri_jet2_is_the_exact_taylor_data(f in tri_poly(0, 7), (u, v) in point()) {
+        let b = bary(&u, &v);
+        let (val, grad, hess) = f.jet2(&b);
+        prop_assert_eq!(val, tri_at(&f, &b));
+        prop_assert_eq!(&grad[0], &tri_at(&f.deriv_u(), &b));
+        prop_assert_eq!(&grad[1], &tri_at(&f.deriv_v(), &b));
+        let h = f.hessian();
+        for (got, want) in hess.iter().zip(&h) {
+            prop_assert_eq!(got, &tri_at(want, &b));
+        }
+    }
+
     #[test]
     fn uni_eval_agrees_across_kernels(f in uni_poly(0, 8), x in coord()) {
         let t = local(&x, f.domain());

@@ -234,6 +234,59 @@ impl<S: Scalar> TriBezier<S> {
         })
     }
 
+    /// The value, the gradient `(f_u, f_v)` and the Hessian
+    /// `(f_uu, f_uv, f_vv)` at the barycentric point `b` (`w = 1 − u − v`
+    /// moves with `u` and `v`), without forming derivative polynomials:
+    /// de Casteljau down to the quadratic net `q` at `b` gives
+    /// `f_uu = n(n−1)(q_200 − 2q_101 + q_002)`,
+    /// `f_uv = n(n−1)(q_110 − q_101 − q_011 + q_002)`,
+    /// `f_vv = n(n−1)(q_020 − 2q_011 + q_002)` (differencing commutes with
+    /// the de Casteljau steps); one step more, the linear net `r`, gives
+    /// `f_u = n(r_100 − r_001)`, `f_v = n(r_010 − r_001)`. Partials of order
+    /// above `n` are zero. Rounding as [`eval_bary`](Self::eval_bary).
+    ///
+    /// ```
+    /// use rootclip::TriBezier;
+    /// // f = u² + 3uv on the unit triangle (degree 2).
+    /// let f = TriBezier::from_fn(2, |i, j, _| match (i, j) { (2, 0) => 1.0, (1, 1) => 1.5, _ => 0.0 });
+    /// let (val, grad, hess) = f.jet2(&[0.25, 0.5, 0.25]);
+    /// assert!((val - 0.4375).abs() < 1e-15 && (grad[0] - 2.0).abs() < 1e-15 && (grad[1] - 0.75).abs() < 1e-15);
+    /// assert_eq!(hess, [2.0, 3.0, 0.0]);
+    /// ```
+    pub fn jet2(&self, b: &Bary<S>) -> (S, [S; 2], [S; 3]) {
+        let n = self.degree;
+        let mut net = self.coeffs.clone();
+        for m in (3..=n).rev() {
+            de_casteljau_step(&mut net, m, b);
+        }
+        let at = |net: &[S], m: usize, i: usize, j: usize| net[tri_index(m, i, j)].clone();
+        let hess = if n >= 2 {
+            let k = S::from_i64((n * (n - 1)) as i64);
+            let q = |i, j| at(&net, 2, i, j);
+            let two = S::from_i64(2);
+            [
+                k.clone() * (q(2, 0) - two.clone() * q(1, 0) + q(0, 0)),
+                k.clone() * (q(1, 1) - q(1, 0) - q(0, 1) + q(0, 0)),
+                k * (q(0, 2) - two * q(0, 1) + q(0, 0)),
+            ]
+        } else {
+            [S::zero(), S::zero(), S::zero()]
+        };
+        if n >= 2 {
+            de_casteljau_step(&mut net, 2, b);
+        }
+        let grad = if n >= 1 {
+            let k = S::from_i64(n as i64);
+            let r = |i, j| at(&net, 1, i, j);
+            let g = [k.clone() * (r(1, 0) - r(0, 0)), k * (r(0, 1) - r(0, 0))];
+            de_casteljau_step(&mut net, 1, b);
+            g
+        } else {
+            [S::zero(), S::zero()]
+        };
+        (net.swap_remove(0), grad, hess)
+    }
+
     /// The second partials `(f_uu, f_uv, f_vv)`, each of degree `n − 2` (or the
     /// zero constant when `n < 2`).
     pub fn hessian(&self) -> [Self; 3] {

@@ -100,15 +100,26 @@ pub fn fat_curve<S: Num>(f: &TriBezier<S>, k: usize) -> Fat<S> {
 /// `{f̂, f^β}`, and `f̂`'s coefficients are enclosed in the kernel's arithmetic.
 pub fn preprocess<S: Num>(fa: &TriBezier<S>, fb: &TriBezier<S>, c: [f64; 3]) -> Option<TriBezier<S>> {
     let delta = fa.sub(fb);
-    let d64 = delta.map(|x| x.to_f64());
-    let b64 = fb.map(|x| x.to_f64());
-    let at = |p: &TriBezier<f64>| p.eval_bary(&c);
-    let (du, dv) = (d64.deriv_u(), d64.deriv_v());
-    let (duu, duv, dvv) = (at(&du.deriv_u()), at(&du.deriv_v()), at(&dv.deriv_v()));
-    let (du, dv) = (at(&du), at(&dv));
-    let bu = b64.deriv_u();
-    let bv = b64.deriv_v();
-    let rhs = [-at(&bu.deriv_u()), -at(&bu.deriv_v()), -at(&bv.deriv_v())];
+    paper_multiplier(&jet(&delta, c), &jet(fb, c), c).map(|l| apply_paper(&delta, fb, l))
+}
+
+/// Gradient and Hessian at `c`, in `f64` (the multipliers only need to be
+/// good, not exact: any choice is rigorous).
+type Jet = ([f64; 2], [f64; 3]);
+
+fn jet<S: Num>(p: &TriBezier<S>, c: [f64; 3]) -> Jet {
+    let (_, g, h) = p.map(|x| x.to_f64()).jet2(&c);
+    (g, h)
+}
+
+/// `ℓ = (ℓ0, ℓ1, ℓ2)` of Eq. (7) from the jets of `Δ = f^α − f^β` (formed as
+/// a polynomial first, so that partials which vanish exactly stay 0 and a
+/// singular `A` is seen as such) and of `f^β`; `None` when `A` is
+/// numerically singular.
+fn paper_multiplier(jd: &Jet, jb: &Jet, c: [f64; 3]) -> Option<[f64; 3]> {
+    let [du, dv] = jd.0;
+    let [duu, duv, dvv] = jd.1;
+    let rhs = [-jb.1[0], -jb.1[1], -jb.1[2]];
     let (u, v) = (c[0], c[1]);
     let a = [
         [duu, u * duu + 2.0 * du, v * duu],
@@ -116,12 +127,14 @@ pub fn preprocess<S: Num>(fa: &TriBezier<S>, fb: &TriBezier<S>, c: [f64; 3]) -> 
         [dvv, u * dvv, v * dvv + 2.0 * dv],
     ];
     let l = solve3(a, rhs)?;
-    if l.iter().any(|x| !x.is_finite() || x.abs() > 1e8) {
-        return None;
-    }
+    (!l.iter().any(|x| !x.is_finite() || x.abs() > 1e8)).then_some(l)
+}
+
+/// `f̂ = ℓ Δ + f^β` in the kernel's arithmetic.
+fn apply_paper<S: Num>(delta: &TriBezier<S>, fb: &TriBezier<S>, l: [f64; 3]) -> TriBezier<S> {
     // ℓ as a degree-1 BB polynomial: values at V3 (0,0), V1 (1,0), V2 (0,1).
-    let ell = TriBezier::new(1, vec![S::pt(l[0]), S::pt(l[0] + l[1]), S::pt(l[0] + l[2])]).ok()?;
-    Some(ell.mul(&delta).add(fb))
+    let ell = TriBezier::new(1, vec![S::pt(l[0]), S::pt(l[0] + l[1]), S::pt(l[0] + l[2])]).expect("three coefficients");
+    ell.mul(delta).add(fb)
 }
 
 /// The generalised preprocessing used when Eq. (8)'s `A` is singular:
@@ -139,17 +152,12 @@ pub fn preprocess<S: Num>(fa: &TriBezier<S>, fb: &TriBezier<S>, c: [f64; 3]) -> 
 /// respectively a function of `u` alone). Rigor is as for [`preprocess`]:
 /// every root of `{f^α, f^β}` is a root of `{f̂, f^β}`.
 pub fn preprocess_general<S: Num>(fa: &TriBezier<S>, fb: &TriBezier<S>, c: [f64; 3]) -> Option<TriBezier<S>> {
-    let (a64, b64) = (fa.map(|x| x.to_f64()), fb.map(|x| x.to_f64()));
-    let grad_hess = |p: &TriBezier<f64>| {
-        let (pu, pv) = (p.deriv_u(), p.deriv_v());
-        let h = [
-            pu.deriv_u().eval_bary(&c),
-            pu.deriv_v().eval_bary(&c),
-            pv.deriv_v().eval_bary(&c),
-        ];
-        ([pu.eval_bary(&c), pv.eval_bary(&c)], h)
-    };
-    let ((fg, fh), (gg, gh)) = (grad_hess(&a64), grad_hess(&b64));
+    general_multipliers(&jet(fa, c), &jet(fb, c)).map(|x| apply_general(fa, fb, x, c))
+}
+
+/// The minimum-norm `(m0, ℓ1, ℓ2, m1, m2)` of [`preprocess_general`].
+fn general_multipliers(ja: &Jet, jb: &Jet) -> Option<[f64; 5]> {
+    let ((fg, fh), (gg, gh)) = (ja, jb);
     // Columns of M for x = (m0, ℓ1, ℓ2, m1, m2).
     let cols = [
         [gh[0], gh[1], gh[2]],
@@ -165,22 +173,21 @@ pub fn preprocess_general<S: Num>(fa: &TriBezier<S>, fb: &TriBezier<S>, c: [f64;
         }
     }
     let y = solve3(mmt, [-fh[0], -fh[1], -fh[2]])?;
-    let x: Vec<f64> = cols
-        .iter()
-        .map(|col| col[0] * y[0] + col[1] * y[1] + col[2] * y[2])
-        .collect();
-    if x.iter().any(|v| !v.is_finite() || v.abs() > 1e8) {
-        return None;
-    }
+    let x = cols.map(|col| col[0] * y[0] + col[1] * y[1] + col[2] * y[2]);
+    (!x.iter().any(|v| !v.is_finite() || v.abs() > 1e8)).then_some(x)
+}
+
+/// `f̂ = ℓ f^α + m f^β` in the kernel's arithmetic.
+fn apply_general<S: Num>(fa: &TriBezier<S>, fb: &TriBezier<S>, x: [f64; 5], c: [f64; 3]) -> TriBezier<S> {
     let (cs, ct) = (c[0], c[1]);
     // A linear polynomial a + b1 (s − cs) + b2 (t − ct) in BB form: values at V3, V1, V2.
     let linear = |a: f64, b1: f64, b2: f64| {
         let at = |s: f64, t: f64| S::pt(a + b1 * (s - cs) + b2 * (t - ct));
-        TriBezier::new(1, vec![at(0.0, 0.0), at(1.0, 0.0), at(0.0, 1.0)]).ok()
+        TriBezier::new(1, vec![at(0.0, 0.0), at(1.0, 0.0), at(0.0, 1.0)]).expect("three coefficients")
     };
-    let ell = linear(1.0, x[1], x[2])?;
-    let m = linear(x[0], x[3], x[4])?;
-    Some(ell.mul(fa).add(&m.mul(fb)))
+    let ell = linear(1.0, x[1], x[2]);
+    let m = linear(x[0], x[3], x[4]);
+    ell.mul(fa).add(&m.mul(fb))
 }
 
 /// Gaussian elimination with partial pivoting; `None` when a pivot is tiny
@@ -242,7 +249,12 @@ pub fn clip_bounds<S: Num>(method: Method, fa: &TriBezier<S>, fb: &TriBezier<S>,
         Method::HcNoPre => clip_against_fat_curves(&[fat_curve(fa, 1), fat_curve(fb, 2)]),
         Method::Hc => {
             let plain = fat_curve(fa, 1);
-            let fhat = preprocess(fa, fb, incenter).or_else(|| preprocess_general(fa, fb, incenter));
+            let delta = fa.sub(fb);
+            let jb = jet(fb, incenter);
+            let fhat = match paper_multiplier(&jet(&delta, incenter), &jb, incenter) {
+                Some(l) => Some(apply_paper(&delta, fb, l)),
+                None => general_multipliers(&jet(fa, incenter), &jb).map(|x| apply_general(fa, fb, x, incenter)),
+            };
             // The preprocessed line wins asymptotically (δ = O(h³)), but on large
             // tri-boxes, or at the rounding floor where the local Hessians are
             // noise, f̂ can be worse than f^α: keep the narrower strip. Both are

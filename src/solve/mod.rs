@@ -494,10 +494,19 @@ fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &Solv
         // barycentric weights up to ~2.3 in size, amplifying rounding by
         // ~2.3^degree and defeating Krawczyk on tiny boxes.)
         let local = System::new(f.clone(), g.clone());
-        let mut probe = |tb: &tribox::TriBox| match local.certify(tribox::box_of(tb)) {
-            Verdict::Unique(_) => Probe::Unique,
-            Verdict::NoRoot => Probe::NoRoot,
-            Verdict::Undecided(_) => Probe::Undecided,
+        // A probe's certificate is kept: a leaf it stopped is certified on
+        // the same box again below, unless it touches other leaves.
+        let mut proven: Vec<(IBox, IBox)> = Vec::new();
+        let mut probe = |tb: &tribox::TriBox| {
+            let x = tribox::box_of(tb);
+            match local.certify(x) {
+                Verdict::Unique(k) => {
+                    proven.push((x, k));
+                    Probe::Unique
+                }
+                Verdict::NoRoot => Probe::NoRoot,
+                Verdict::Undecided(_) => Probe::Undecided,
+            }
         };
         let run = driver::run(f, g, exact.as_ref(), &limits, &mut probe);
         add_counters(&mut stats.run, &run.counters);
@@ -514,7 +523,7 @@ fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &Solv
                 diameters: path_diameters(&run.nodes, leaf.node),
             })
             .collect();
-        let (r, c) = certify_groups(group_overlapping(leaves), &local, &mut stats);
+        let (r, c) = certify_groups(group_overlapping(leaves), &local, &proven, &mut stats);
         let to_global = |x: Found| Found {
             bx: frame.map_box(x.bx),
             diameters: x.diameters,
@@ -633,17 +642,28 @@ const SMALL_GROUP: usize = 16;
 /// shared edge is then found once); a small group whose hull fails is tried
 /// leaf by leaf (two roots closer than a few tri-boxes), a large one becomes
 /// an undecided cluster.
+///
+/// `proven` lists boxes already certified (box, Krawczyk box): a group of one
+/// such leaf takes its certificate without recomputing it.
 fn certify_groups<P: Bivariate>(
     groups: Vec<Vec<Found>>,
     global: &System<P>,
+    proven: &[(IBox, IBox)],
     stats: &mut Stats,
 ) -> (Vec<Found>, Vec<Found>) {
     let (mut roots, mut clusters) = (Vec::new(), Vec::new());
     for group in groups {
         let len = group.len();
         let whole = hull_of(group.clone());
-        stats.krawczyk_calls += 1;
-        match global.certify(whole.bx) {
+        let known = proven.iter().find(|(x, _)| len == 1 && *x == whole.bx);
+        let verdict = match known {
+            Some(&(_, k)) => Verdict::Unique(k),
+            None => {
+                stats.krawczyk_calls += 1;
+                global.certify(whole.bx)
+            }
+        };
+        match verdict {
             Verdict::Unique(k) => roots.push(Found {
                 bx: k,
                 diameters: whole.diameters,
@@ -680,8 +700,7 @@ fn add_counters(a: &mut Counters, b: &Counters) {
 }
 
 fn local_box<S>(leaf: &Leaf<S>) -> IBox {
-    let [s, t] = leaf.tb.bbox();
-    [interval(s[0], s[1]), interval(t[0], t[1])]
+    tribox::box_of(&leaf.tb)
 }
 
 fn overlaps(a: IBox, b: IBox) -> bool {
