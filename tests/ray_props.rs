@@ -268,7 +268,8 @@ proptest! {
     /// The rectangle route (default) against the triangle route on random
     /// rational tensor patches and random rays through their box: the same
     /// certified hits (boxes overlap one to one), both passing the
-    /// independent check; and the queries: `Nearest` returns the first
+    /// independent check (the box route with Bézier hulls and with fat lines,
+    /// and the triangles); and the queries: `Nearest` returns the first
     /// certified hit of the full list, `Any` a certified hit of it.
     #[test]
     fn routes_and_queries_agree(
@@ -294,14 +295,21 @@ proptest! {
         };
         let rect = run(TensorRoute::Rect, Query::All);
         let tri = run(TensorRoute::Triangles, Query::All);
+        let fat = run(TensorRoute::RectFatLine, Query::All);
         check_hits(&patch, &ray, &rect);
         check_hits(&patch, &ray, &tri);
+        check_hits(&patch, &ray, &fat);
         let overlap = |a: &Hit, b: &Hit| a.bx.u[0] <= b.bx.u[1] && b.bx.u[0] <= a.bx.u[1] && a.bx.v[0] <= b.bx.v[1] && b.bx.v[0] <= a.bx.v[1];
         let cert = |h: &[Hit]| h.iter().filter(|x| x.certified).cloned().collect::<Vec<_>>();
         let (cr, ct) = (cert(&rect), cert(&tri));
         prop_assert_eq!(cr.len(), ct.len(), "rect {:?}\ntri {:?}", rect, tri);
         for h in &cr {
             prop_assert!(ct.iter().filter(|x| overlap(h, x)).count() == 1, "{:?} not matched in {:?}", h, tri);
+        }
+        let cf = cert(&fat);
+        prop_assert_eq!(cf.len(), cr.len(), "fat-line {:?}\nrect {:?}", fat, rect);
+        for h in &cf {
+            prop_assert!(cr.iter().filter(|x| overlap(h, x)).count() == 1, "{:?} not matched in {:?}", h, rect);
         }
         let near = run(TensorRoute::Rect, Query::Nearest);
         match (cr.first(), near.iter().find(|h| h.certified)) {

@@ -1658,6 +1658,37 @@ proptest! {
     }
 }
 
+/// The rectangle route with fat-line clipping ([`SquareRoute::RectFatLine`]).
+fn fat_line_opts() -> SolveOptions {
+    SolveOptions {
+        square_route: SquareRoute::RectFatLine,
+        ..default_opts()
+    }
+}
+
+proptest! {
+    #![proptest_config(cfg(32))]
+
+    /// 10: fat-line clipping on boxes, on planted lines (interior, boundary,
+    /// outside and double points) and on dense systems re-proven exactly.
+    #[test]
+    fn rect_fat_line_planted_lines(
+        (fl, gl) in line_system(point(Domain::Square), Domain::Square, Plan { axis: true, ..BROAD }),
+    ) {
+        planted_property(&fl, &gl, Domain::Square, &fat_line_opts())?;
+    }
+
+    #[test]
+    fn rect_fat_line_dense_reproven((f, g, p) in dense_system()) {
+        dense_property(&f, &g, p.as_ref(), Domain::Square, &fat_line_opts())?;
+    }
+
+    #[test]
+    fn rect_fat_line_close_pairs((p, ab, mu, flip) in close_pair()) {
+        close_pairs_property(Domain::Square, &p, ab, &mu, flip, &fat_line_opts())?;
+    }
+}
+
 proptest! {
     #![proptest_config(cfg(24))]
 

@@ -58,6 +58,8 @@ pub enum RouteArg {
     /// Bézier clipping on boxes (default; faster).
     #[default]
     Rect,
+    /// Fat-line clipping on boxes.
+    RectFatLine,
     /// Two triangles of degree m + n, hybrid clipping.
     Triangles,
 }
@@ -79,6 +81,7 @@ pub fn run(args: &RayArgs) -> Result<String> {
     let opts = RayOptions {
         route: match args.route {
             RouteArg::Rect => TensorRoute::Rect,
+            RouteArg::RectFatLine => TensorRoute::RectFatLine,
             RouteArg::Triangles => TensorRoute::Triangles,
         },
         query: if args.nearest {

@@ -44,7 +44,7 @@ use crate::poly::{TensorBezier, TriBezier};
 use crate::scalar::iv::Iv;
 use crate::scalar::{interval, point};
 pub use crate::solve::rect::Query;
-use crate::solve::rect::{eval_box, solve_rect_iv, RectOptions, RectProblem};
+use crate::solve::rect::{eval_box, solve_rect_iv, RectClip, RectOptions, RectProblem};
 use crate::solve::{solve_square, solve_triangle, Box2, Solution, SolveOptions};
 use glam::DVec3;
 use inari::Interval;
@@ -236,6 +236,9 @@ pub enum TensorRoute {
     /// faster (README).
     #[default]
     Rect,
+    /// As [`TensorRoute::Rect`], with fat-line clipping on boxes
+    /// ([`RectClip::FatLine`]) instead of Bézier hulls.
+    RectFatLine,
     /// The square as two triangles of degree `m + n`, solved by hybrid
     /// clipping ([`solve_square`]); queries filter the full hit list.
     Triangles,
@@ -273,7 +276,7 @@ impl Default for RayOptions {
 ///
 /// `complete` keeps its meaning for the hits the query asks for.
 pub fn intersect_with(patch: &Patch, ray: &Ray, opts: &RayOptions) -> Result<RayOutcome> {
-    if let (Patch::Tensor(p), TensorRoute::Rect) = (patch, opts.route) {
+    if let (Patch::Tensor(p), TensorRoute::Rect | TensorRoute::RectFatLine) = (patch, opts.route) {
         let out = intersect_rect(p, patch, ray, opts)?;
         if !matches!(out, RayOutcome::Degenerate(Degeneracy::Unresolved(ref h)) if !h.complete) {
             return Ok(out);
@@ -406,6 +409,11 @@ fn intersect_rect(p: &TensorPatch, patch: &Patch, ray: &Ray, opts: &RayOptions) 
         max_boxes: opts.solve.max_boxes,
         query: opts.query,
         key_min: Some(0.0),
+        clip: if opts.route == TensorRoute::RectFatLine {
+            RectClip::FatLine
+        } else {
+            RectClip::Bezier
+        },
     };
     let sol = match solve_rect_iv(problem, &ropts) {
         Ok(r) => r.solution,

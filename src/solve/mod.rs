@@ -75,6 +75,9 @@ pub enum SquareRoute {
     /// `probe`, `split` and `max_depth` do not apply), falling back to
     /// [`SquareRoute::Triangles`] when its budget runs out.
     Rect,
+    /// As [`SquareRoute::Rect`] with fat-line clipping on boxes
+    /// ([`rect::RectClip::FatLine`]).
+    RectFatLine,
 }
 
 impl Default for SolveOptions {
@@ -336,10 +339,15 @@ pub fn solve(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions
             let ((m, n), (p, q)) = (f.degrees(), g.degrees());
             let (dm, dn) = (m.max(p) as usize, n.max(q) as usize);
             let (ef, eg) = (f.to_square().elevate(dm, dn)?, g.to_square().elevate(dm, dn)?);
-            if opts.square_route == SquareRoute::Rect {
+            if opts.square_route != SquareRoute::Triangles {
                 let ropts = rect::RectOptions {
                     eps: opts.eps,
                     max_boxes: opts.max_boxes,
+                    clip: if opts.square_route == SquareRoute::RectFatLine {
+                        rect::RectClip::FatLine
+                    } else {
+                        rect::RectClip::Bezier
+                    },
                     ..rect::RectOptions::default()
                 };
                 let sol = rect::solve_rect(&ef.map(enclose), &eg.map(enclose), None, &ropts)?.solution;

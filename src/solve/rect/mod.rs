@@ -49,6 +49,8 @@
 //! Interval arithmetic: the hot loops use [`Iv`] (nearest rounding moved one
 //! float outward), certification of leaves uses inari.
 
+mod fatline;
+
 use super::krawczyk::{IBox, System, Verdict};
 use super::{
     group_overlapping, hull_of, merge_roots, overlaps, Box2, Cluster, ClusterReason, Found, Leftover, Root, Solution,
@@ -58,6 +60,7 @@ use crate::error::{Error, Result};
 use crate::poly::TensorBezier;
 use crate::scalar::interval;
 use crate::scalar::iv::Iv;
+use fatline::{fat_line_spans, FatLineClip};
 use inari::Interval;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -76,6 +79,20 @@ pub enum Query {
     Any,
 }
 
+/// How a box is clipped (step 4 of the module docs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum RectClip {
+    /// Bézier clipping (Nishita, Sederberg & Kakimoto 1990): the convex hull
+    /// of each equation's control points projected on each axis.
+    #[default]
+    Bezier,
+    /// Fat lines (linear clipping on boxes, [`fatline`] docs): a rigorous
+    /// strip around each equation's least-squares plane, the box cut to the
+    /// parallelogram where both strips meet. Falls back to Bézier hulls
+    /// where the strips are parallel within rounding.
+    FatLine,
+}
+
 /// Options of [`solve_rect`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RectOptions {
@@ -88,6 +105,8 @@ pub struct RectOptions {
     pub query: Query,
     /// Drop regions where the objective is provably below this value.
     pub key_min: Option<f64>,
+    /// The clipping method.
+    pub clip: RectClip,
 }
 
 impl Default for RectOptions {
@@ -97,6 +116,7 @@ impl Default for RectOptions {
             max_boxes: 200_000,
             query: Query::All,
             key_min: None,
+            clip: RectClip::default(),
         }
     }
 }
@@ -543,14 +563,20 @@ impl Runner {
                     // The only root of the box lies in K ⊂ int box: go on
                     // with K widened by half its width on each side (so the
                     // root stays inside, away from the new edges), where J
-                    // is tighter.
-                    for (d, c) in k.iter().enumerate() {
+                    // is tighter — if that at least halves the box; a wide K
+                    // (J still loose) is left to the clips below instead.
+                    let spans = k.map(|c| {
                         let r = 0.5 * (c.hi - c.lo);
-                        clip(&mut node, sh, d, (c.lo - r).max(0.0), (c.hi + r).min(1.0));
+                        ((c.lo - r).max(0.0), (c.hi + r).min(1.0))
+                    });
+                    if spans.iter().map(|s| s.1 - s.0).product::<f64>() <= 0.5 {
+                        for (d, &(a, b)) in spans.iter().enumerate() {
+                            clip(&mut node, sh, d, a, b);
+                        }
+                        self.stats.run.clips += 1;
+                        node.id = self.push_trace(node.id, node.outer());
+                        return Step::Continue(node);
                     }
-                    self.stats.run.clips += 1;
-                    node.id = self.push_trace(node.id, node.outer());
-                    return Step::Continue(node);
                 }
                 Local::NoRoot => {
                     self.stats.run.probe_exclusions += 1;
@@ -564,22 +590,24 @@ impl Runner {
             return Step::Done;
         }
         // Clip in both directions.
-        let mut spans = [(0.0f64, 1.0f64); 2];
-        for (d, span) in spans.iter_mut().enumerate() {
-            for p in 0..2 {
-                match zero_span(&node.c[p * sh.len..(p + 1) * sh.len], sh, d) {
-                    None => {
-                        self.stats.run.clip_exclusions += 1;
-                        return Step::Done;
-                    }
-                    Some((a, b)) => *span = (span.0.max(a), span.1.min(b)),
-                }
-            }
-            if span.0 > span.1 {
+        let fat = match self.opts.clip {
+            RectClip::FatLine => fat_line_spans(&node.c, sh),
+            RectClip::Bezier => FatLineClip::Parallel,
+        };
+        let mut spans = match fat {
+            FatLineClip::Empty => {
                 self.stats.run.clip_exclusions += 1;
                 return Step::Done;
             }
-        }
+            FatLineClip::Spans(s) => s,
+            FatLineClip::Parallel => match hull_spans(&node.c, sh) {
+                Some(s) => s,
+                None => {
+                    self.stats.run.clip_exclusions += 1;
+                    return Step::Done;
+                }
+            },
+        };
         // Near a simple root the hulls close in on it from both sides, and
         // one clip can leave it within rounding of an edge, where K(X) ⊂ int X
         // can never hold again (sub-boxes never grow back). Keep a quarter of
@@ -848,6 +876,22 @@ impl Runner {
             stopped_early: self.stopped_early,
         }
     }
+}
+
+/// Bézier clipping of the box in both directions: the intersection of the
+/// spans of `f` and `g` (module docs, step 4); `None` if it is empty.
+fn hull_spans(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
+    let mut spans = [(0.0f64, 1.0f64); 2];
+    for (d, span) in spans.iter_mut().enumerate() {
+        for p in 0..2 {
+            let (a, b) = zero_span(&c[p * sh.len..(p + 1) * sh.len], sh, d)?;
+            *span = (span.0.max(a), span.1.min(b));
+        }
+        if span.0 > span.1 {
+            return None;
+        }
+    }
+    Some(spans)
 }
 
 fn one_signed(c: &[Iv]) -> bool {
