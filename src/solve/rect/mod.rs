@@ -26,7 +26,13 @@
 //!    `L_i ≤ 0 ≤ U_i`). The crossings are computed in `f64` and widened by
 //!    `4·10⁻¹⁵` (their error is below `7·2⁻⁵³`, since every value is in
 //!    `[0, 1]` and the quotient `y_i/(y_i − y_j)` of opposite signs never
-//!    cancels). The kept span is the intersection over `f` and `g`;
+//!    cancels). The kept span is the intersection over `f` and `g`, with a
+//!    quarter of its width added on each side (so that a simple root never
+//!    ends within rounding of an edge, where Krawczyk cannot prove it) and
+//!    no side narrower than 10⁻³ of the other. With [`RectClip::FatLine`]
+//!    the spans come instead from the parallelogram where two rigorous
+//!    strips around the equations' least-squares planes meet (linear
+//!    clipping on boxes; `fatline.rs`);
 //! 5. a step that did not halve the box's area **splits** it across its
 //!    longer side at `63/128` (off the centre, so that a root at a "round"
 //!    parameter such as ½ is rarely on a split line).
@@ -86,7 +92,7 @@ pub enum RectClip {
     /// of each equation's control points projected on each axis.
     #[default]
     Bezier,
-    /// Fat lines (linear clipping on boxes, [`fatline`] docs): a rigorous
+    /// Fat lines (linear clipping on boxes; see `src/solve/rect/fatline.rs`): a rigorous
     /// strip around each equation's least-squares plane, the box cut to the
     /// parallelogram where both strips meet. Falls back to Bézier hulls
     /// where the strips are parallel within rounding.
