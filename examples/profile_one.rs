@@ -38,6 +38,7 @@ fn main() {
             eps: 1e-12,
             max_boxes: 100000,
             max_depth: 400,
+            max_exact: driver::MAX_EXACT_BOXES,
             probe_below: 0.0,
             split: SplitRule::Halving,
         };

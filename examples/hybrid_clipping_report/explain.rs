@@ -444,6 +444,7 @@ fn separation_in_tree(ex: &Example, m: Method) -> Res<Option<(f64, Option<usize>
         eps: o.eps,
         max_boxes: o.max_boxes,
         max_depth: o.max_depth,
+        max_exact: driver::MAX_EXACT_BOXES,
         probe_below: 0.0,
         split: o.split,
     };

@@ -26,6 +26,12 @@ pub struct Limits {
     pub max_boxes: usize,
     /// No tri-box deeper than this level is processed.
     pub max_depth: usize,
+    /// At most this many tri-boxes are computed from the exact rational
+    /// input ([`EXACT_BELOW`]); later ones use the interval kernel (sound,
+    /// only noisier). Rational coefficients grow with the input's and the
+    /// vertices' sizes, so near a degenerate (triple) root an unbounded
+    /// exact phase can take minutes.
+    pub max_exact: usize,
     /// Probe stalled tri-boxes (clip did not halve) smaller than this with
     /// the `probe` callback of [`run`]; `0` disables probing (the paper's
     /// algorithm, used for the tables).
@@ -113,6 +119,9 @@ fn noisy<S: Num>(p: &TriBezier<S>) -> bool {
     width > 1e-4 * size
 }
 
+/// The default [`Limits::max_exact`].
+pub const MAX_EXACT_BOXES: usize = 250;
+
 /// With probing on, a tri-box that a clip brought below this diameter is
 /// offered to Krawczyk right away.
 pub const EARLY_CERTIFY: f64 = 1e-2;
@@ -139,6 +148,8 @@ pub struct Counters {
     pub probe_exclusions: usize,
     /// Stalled tri-boxes recomputed from the exact input.
     pub exact_restarts: usize,
+    /// Tri-boxes whose polynomials were computed from the exact input.
+    pub exact_boxes: usize,
 }
 
 /// What the loop produced.
@@ -213,6 +224,59 @@ pub fn run<S: Num>(
         step(f, g, exact, item, limits, &mut out, &mut stack, probe);
     }
     out
+}
+
+/// Some combination `w_f f + w_g g` (`w` the left singular vector of the
+/// smallest singular value of the Jacobian at the tri-box's centre, or
+/// `f`, `g` themselves) has every coefficient possibly zero: the sign that
+/// would separate the curves is lost to rounding on the whole tri-box.
+/// Subdivision cannot restore it (a child's coefficients are convex
+/// combinations of these, so they contain 0 too); only exact coefficients
+/// could. So such a stalled, undecided tri-box is a leaf whatever its size.
+///
+/// Near a multiple root the two curves run within rounding of each other
+/// over a neighbourhood of about the `k`-th root of the rounding (`k` the
+/// multiplicity: ~1e-8 for a double root, ~1e-5 for a triple one), where
+/// `f` and `g` separately keep their signs but the combination that tells
+/// the curves apart does not; splitting that neighbourhood down to
+/// [`SINGULAR_FLOOR`] made tens of thousands of leaves.
+fn lost_to_rounding<S: Num>(f: &TriBezier<S>, g: &TriBezier<S>) -> bool {
+    if !S::KERNEL.is_rigorous() || f.degree() != g.degree() {
+        return false;
+    }
+    fn lost<S: Num>(mut c: impl Iterator<Item = S>) -> bool {
+        c.all(|c| matches!(c.sign_class(), Sign::Zero | Sign::Straddles))
+    }
+    if lost(f.coeffs().iter().cloned()) || lost(g.coeffs().iter().cloned()) {
+        return true;
+    }
+    let centre = [1.0 / 3.0; 3];
+    let (_, a, _) = f.map(|x| x.to_f64()).jet2(&centre);
+    let (_, b, _) = g.map(|x| x.to_f64()).jet2(&centre);
+    // J Jᵀ = [[p, q], [q, r]]; eigenvector of its smallest eigenvalue.
+    let (p, q, r) = (
+        a[0] * a[0] + a[1] * a[1],
+        a[0] * b[0] + a[1] * b[1],
+        b[0] * b[0] + b[1] * b[1],
+    );
+    let lam = 0.5 * (p + r) - (0.25 * (p - r) * (p - r) + q * q).sqrt();
+    let (v1, v2) = ([q, lam - p], [lam - r, q]);
+    let w = if v1[0].abs() + v1[1].abs() >= v2[0].abs() + v2[1].abs() {
+        v1
+    } else {
+        v2
+    };
+    let norm = w[0].abs().max(w[1].abs());
+    if !(norm > 0.0 && norm.is_finite()) {
+        return false;
+    }
+    let (wf, wg) = (S::pt(w[0] / norm), S::pt(w[1] / norm));
+    lost(
+        f.coeffs()
+            .iter()
+            .zip(g.coeffs())
+            .map(|(x, y)| wf.clone() * x.clone() + wg.clone() * y.clone()),
+    )
 }
 
 /// The relative width of the strip cut along an edge where both equations
@@ -317,10 +381,21 @@ fn step<S: Num>(
 ) {
     let level = out.nodes[item.node].level + 1;
     let diam = item.tb.diam();
+    // Past the exact budget the interval kernel takes over, also below
+    // tri-boxes that were exact so far.
+    let exact = exact.filter(|_| out.counters.exact_boxes < limits.max_exact);
+    item.exact &= exact.is_some();
+    // Counts the exact computations that `restrict_pair` is about to do.
+    let count_exact = |out: &mut Run<S>, use_exact: bool| {
+        if use_exact && exact.is_some() {
+            out.counters.exact_boxes += 1;
+        }
+    };
     if exact.is_some() && !item.exact && diam < EXACT_BELOW && (noisy(&item.fa) || noisy(&item.fb)) {
         // The enclosures are wide relative to the values: recompute exactly
         // before the clip is spoiled by rounding (same tri-box, same level).
         out.counters.exact_restarts += 1;
+        count_exact(out, true);
         let (fa, fb) = restrict_pair(f, g, exact, true, &item.tb);
         item = Leaf {
             fa,
@@ -344,6 +419,7 @@ fn step<S: Num>(
     let (tb, fa, fb) = match clipped {
         Some(tb) if tb.diam() < diam => {
             out.counters.clips += 1;
+            count_exact(out, item.exact);
             let (fa, fb) = restrict_pair(f, g, exact, item.exact, &tb);
             (tb, fa, fb)
         }
@@ -361,6 +437,7 @@ fn step<S: Num>(
     if !progressed && exact.is_some() && !item.exact && new_diam < EXACT_BELOW && S::KERNEL.is_rigorous() {
         // Stalled at the rounding floor: redo this tri-box from the exact input.
         out.counters.exact_restarts += 1;
+        count_exact(out, true);
         let (fa, fb) = restrict_pair(f, g, exact, true, &tb);
         let node = push_node(out, item.node, level, new_diam);
         stack.push(Leaf {
@@ -401,7 +478,9 @@ fn step<S: Num>(
             return;
         }
         Probe::Unique => true,
-        Probe::Undecided => !progressed && probe_here && new_diam < SINGULAR_FLOOR,
+        Probe::Undecided => {
+            !progressed && probe_here && (new_diam < SINGULAR_FLOOR || lost_to_rounding(&next.fa, &next.fb))
+        }
     };
     if stop_here || progressed {
         let leaf = at_level(out, next, level, new_diam);
@@ -420,6 +499,7 @@ fn step<S: Num>(
     out.counters.splits += 1;
     // Push in reverse so the corner at V1 is processed first.
     for kid in kids.into_iter().rev() {
+        count_exact(out, item.exact);
         let (ka, kb) = restrict_pair(f, g, exact, item.exact, &kid);
         if uniform_sign(&ka).is_some() || uniform_sign(&kb).is_some() {
             out.counters.sign_exclusions += 1;

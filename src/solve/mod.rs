@@ -101,6 +101,7 @@ impl SolveOptions {
             eps: self.eps,
             max_boxes: self.max_boxes,
             max_depth: self.max_depth,
+            max_exact: driver::MAX_EXACT_BOXES,
             probe_below: if self.probe { 1e-3 } else { 0.0 },
             split: self.split,
         }
@@ -572,18 +573,7 @@ fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &Solv
         }
     }
     out_roots.sort_by(|a, b| a.u.total_cmp(&b.u).then(a.v.total_cmp(&b.v)));
-    let clusters = group_overlapping(clusters)
-        .into_iter()
-        .map(|group| {
-            let c = hull_of(group);
-            Cluster {
-                bx: Box2::of(c.bx),
-                reason: ClusterReason::KrawczykUndecided,
-                diameters: c.diameters,
-            }
-        })
-        .chain(strips)
-        .collect();
+    let clusters = undecided_clusters(clusters).into_iter().chain(strips).collect();
     Solution {
         complete: leftovers.is_empty(),
         roots: out_roots,
@@ -628,6 +618,49 @@ fn group_overlapping(mut items: Vec<Found>) -> Vec<Vec<Found>> {
         groups[slot[r]].push(item);
     }
     groups
+}
+
+/// Undecided regions within this distance of each other (their joint hull at
+/// most this wide in both directions) are reported as one.
+const NEAR: f64 = 1e-5;
+
+/// The undecided leaves as clusters: leaves that touch are one region, and
+/// regions whose joint hull is at most [`NEAR`] wide are joined too. Near a
+/// triple root the leaves that rounding leaves undecided are scattered over
+/// a ~1e-5 neighbourhood with excluded gaps between them; one region says
+/// the same, soundly (a hull covers more), and readably.
+fn undecided_clusters(leaves: Vec<Found>) -> Vec<Cluster> {
+    let mut regions: Vec<Found> = group_overlapping(leaves).into_iter().map(hull_of).collect();
+    // Quadratic, so only for a sane count (each pass joins at least one pair).
+    if regions.len() <= 4096 {
+        let near = |a: &Found, b: &Found| {
+            let h = hull(a.bx, b.bx);
+            h[0].wid() <= NEAR && h[1].wid() <= NEAR
+        };
+        let mut joined = true;
+        while joined {
+            joined = false;
+            'outer: for i in 0..regions.len() {
+                for j in i + 1..regions.len() {
+                    if near(&regions[i], &regions[j]) {
+                        let b = regions.swap_remove(j);
+                        let a = regions.swap_remove(i);
+                        regions.push(hull_of(vec![a, b]));
+                        joined = true;
+                        break 'outer;
+                    }
+                }
+            }
+        }
+    }
+    regions
+        .into_iter()
+        .map(|c| Cluster {
+            bx: Box2::of(c.bx),
+            reason: ClusterReason::KrawczykUndecided,
+            diameters: c.diameters,
+        })
+        .collect()
 }
 
 fn hull_of(group: Vec<Found>) -> Found {

@@ -59,8 +59,7 @@ mod fatline;
 
 use super::krawczyk::{IBox, System, Verdict};
 use super::{
-    group_overlapping, hull_of, merge_roots, overlaps, Box2, Cluster, ClusterReason, Found, Leftover, Root, Solution,
-    Stats,
+    merge_roots, overlaps, undecided_clusters, Box2, Cluster, ClusterReason, Found, Leftover, Root, Solution, Stats,
 };
 use crate::error::{Error, Result};
 use crate::poly::TensorBezier;
@@ -843,16 +842,8 @@ impl Runner {
             });
         }
         out.sort_by(|a, b| a.u.total_cmp(&b.u).then(a.v.total_cmp(&b.v)));
-        let clusters = group_overlapping(std::mem::take(&mut self.undecided))
+        let clusters = undecided_clusters(std::mem::take(&mut self.undecided))
             .into_iter()
-            .map(|group| {
-                let c = hull_of(group);
-                Cluster {
-                    bx: Box2::of(c.bx),
-                    reason: ClusterReason::KrawczykUndecided,
-                    diameters: c.diameters,
-                }
-            })
             .chain(self.edge_strips.iter().map(|&s| Cluster {
                 bx: Box2::of(s),
                 reason: ClusterReason::VanishingEdge,
