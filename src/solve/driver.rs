@@ -247,7 +247,7 @@ fn lost_to_rounding<S: Num>(f: &TriBezier<S>, g: &TriBezier<S>) -> bool {
     fn lost<S: Num>(mut c: impl Iterator<Item = S>) -> bool {
         c.all(|c| matches!(c.sign_class(), Sign::Zero | Sign::Straddles))
     }
-    if lost(f.coeffs().iter().cloned()) || lost(g.coeffs().iter().cloned()) {
+    if lost(f.coeffs().iter().copied()) || lost(g.coeffs().iter().copied()) {
         return true;
     }
     let centre = [1.0 / 3.0; 3];
@@ -271,12 +271,7 @@ fn lost_to_rounding<S: Num>(f: &TriBezier<S>, g: &TriBezier<S>) -> bool {
         return false;
     }
     let (wf, wg) = (S::pt(w[0] / norm), S::pt(w[1] / norm));
-    lost(
-        f.coeffs()
-            .iter()
-            .zip(g.coeffs())
-            .map(|(x, y)| wf.clone() * x.clone() + wg.clone() * y.clone()),
-    )
+    lost(f.coeffs().iter().zip(g.coeffs()).map(|(x, y)| wf * *x + wg * *y))
 }
 
 /// The relative width of the strip cut along an edge where both equations

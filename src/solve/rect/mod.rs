@@ -174,6 +174,9 @@ const STACK: usize = 24;
 /// may vanish ([`Runner::cut_vanishing_edges`]): `2⁻³⁰`, so that `1 − EDGE_STRIP`
 /// is exact.
 const EDGE_STRIP: f64 = 1.0 / (1u64 << 30) as f64;
+/// Stalled boxes below this (relative) size whose separating sign is lost
+/// to rounding are leaves ([`sign_lost`]).
+const LOST_BELOW: f64 = 1e-3;
 /// The smallest ratio of a clipped box's sides ([`keep_aspect`]).
 const MIN_ASPECT: f64 = 1e-3;
 /// Where boxes are split (exact, and so is `1 − SPLIT`).
@@ -664,8 +667,11 @@ impl Runner {
         // A stalled box below the floor is a leaf: near a multiple root the
         // region where the coefficients' rounding hides the sign is
         // ~√(rounding) wide, and splitting it down to `eps` would cost
-        // millions of boxes for nothing.
-        if w[0].max(w[1]) < self.opts.eps.max(SINGULAR_FLOOR) {
+        // millions of boxes for nothing. So is one whose separating sign is
+        // lost to rounding, at any size.
+        if w[0].max(w[1]) < self.opts.eps.max(SINGULAR_FLOOR)
+            || (w[0].max(w[1]) < LOST_BELOW && sign_lost(&node.c, sh, w))
+        {
             self.leaf(&node);
             return Step::Done;
         }
@@ -1102,6 +1108,52 @@ pub(crate) fn eval_box(p: &[Iv], m: usize, n: usize, s: [f64; 2], t: [f64; 2]) -
 /// `g = 0` run (nearly) parallel — there it proves no root at once, where
 /// axis-aligned hulls of `f` and `g` would need boxes as thin as the gap.
 /// `None` when some combination proves there is no root.
+/// The left singular vector of the smallest singular value of the 2×2
+/// matrix `j` (row-major): the combination of the rows that is closest to
+/// vanishing. `None` when it is not finite or zero.
+fn smallest_singular_left(j: [f64; 4]) -> Option<[f64; 2]> {
+    // J Jᵀ = [[p, q], [q, r]]; eigenvector of its smallest eigenvalue.
+    let (p, q, r) = (
+        j[0] * j[0] + j[1] * j[1],
+        j[0] * j[2] + j[1] * j[3],
+        j[2] * j[2] + j[3] * j[3],
+    );
+    let lam = 0.5 * (p + r) - (0.25 * (p - r) * (p - r) + q * q).sqrt();
+    let (v1, v2) = ([q, lam - p], [lam - r, q]);
+    let v = if v1[0].abs() + v1[1].abs() >= v2[0].abs() + v2[1].abs() {
+        v1
+    } else {
+        v2
+    };
+    (v.iter().all(|x| x.is_finite()) && v != [0.0, 0.0]).then_some(v)
+}
+
+/// The combination of `f` and `g` closest to vanishing (by the Jacobian at
+/// the box's centre, in domain coordinates: `w` are the box's relative
+/// widths) has every coefficient possibly zero: the sign that would separate
+/// the curves is lost to rounding on the whole box, and no subdivision
+/// restores it (a child's coefficients are convex combinations of these).
+/// Near a triple root that region is ~1e-5 wide.
+///
+/// Domain coordinates matter: on a long thin box an equation varying only
+/// across it is lost on the box, while splitting along the box still
+/// separates roots; its Jacobian row is then not small, so it is not the
+/// combination tested.
+fn sign_lost(c: &[Iv], sh: Shape, w: [f64; 2]) -> bool {
+    let (f, g) = (&c[..sh.len], &c[sh.len..2 * sh.len]);
+    let [a, b] = jacobian_row(f, sh);
+    let [cc, d] = jacobian_row(g, sh);
+    let j = [a.mid() / w[0], b.mid() / w[1], cc.mid() / w[0], d.mid() / w[1]];
+    let Some(v) = smallest_singular_left(j) else {
+        return false;
+    };
+    let (va, vb) = (Iv::point(v[0]), Iv::point(v[1]));
+    f.iter().zip(g).all(|(x, y)| {
+        let h = va.mul(*x).add(vb.mul(*y));
+        !(h.lo > 0.0 || h.hi < 0.0)
+    })
+}
+
 fn preconditioned_spans(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
     let (f, g) = (&c[..sh.len], &c[sh.len..2 * sh.len]);
     let [a, b] = jacobian_row(f, sh);
@@ -1116,20 +1168,7 @@ fn preconditioned_spans(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
         combos.push([j[3] / det, -j[1] / det]);
         combos.push([-j[2] / det, j[0] / det]);
     }
-    // J Jᵀ = [[p, q], [q, r]]; eigenvector of its smallest eigenvalue.
-    let (p, q, r) = (
-        j[0] * j[0] + j[1] * j[1],
-        j[0] * j[2] + j[1] * j[3],
-        j[2] * j[2] + j[3] * j[3],
-    );
-    let lam = 0.5 * (p + r) - (0.25 * (p - r) * (p - r) + q * q).sqrt();
-    let (v1, v2) = ([q, lam - p], [lam - r, q]);
-    let v = if v1[0].abs() + v1[1].abs() >= v2[0].abs() + v2[1].abs() {
-        v1
-    } else {
-        v2
-    };
-    if v.iter().all(|x| x.is_finite()) && v != [0.0, 0.0] {
+    if let Some(v) = smallest_singular_left(j) {
         combos.push(v);
     }
     let mut spans = [(0.0f64, 1.0f64); 2];
