@@ -724,3 +724,63 @@ fn cli_batch_queries_and_routes() {
         }
     }
 }
+
+/// Exact answers at the rounding floor (found by the referee fuzzing, where
+/// such rays got false certificates): vertical rays onto the flat unit square
+/// and unit triangle at points on, just inside and just outside the edges
+/// and corners, and from origins on, just above and just below the surface.
+/// The exact rule is simple here: a hit iff `(x, y)` is in the closed domain
+/// and `z ≥ 0`. A certified hit must be real; a real hit must be reported
+/// (certified, since the exact settling decides all of these but the
+/// subnormal offsets, which may stay undecided, never certified wrongly).
+#[test]
+fn flat_patches_at_the_rounding_floor_are_settled_exactly() {
+    let square: Patch = TensorPatch::new(
+        1,
+        1,
+        vec![DVec3::ZERO, DVec3::Y, DVec3::X, DVec3::new(1.0, 1.0, 0.0)],
+        None,
+    )
+    .unwrap()
+    .into();
+    let triangle: Patch = TriPatch::new(1, vec![DVec3::ZERO, DVec3::X, DVec3::Y], None)
+        .unwrap()
+        .into();
+    let offsets = [-5e-324, -1e-300, -f64::EPSILON, 0.0, f64::EPSILON, 1e-300, 5e-324];
+    let one_minus = [1.0, 1.0 - f64::EPSILON / 2.0, 1.0 + f64::EPSILON];
+    let exact = |x: f64| num_rational::BigRational::from_float(x).unwrap();
+    for (name, patch) in [("square", &square), ("triangle", &triangle)] {
+        let mut coords: Vec<f64> = offsets.to_vec();
+        coords.extend(one_minus);
+        coords.extend([0.3, 0.7, 0.5]);
+        for &x in &coords {
+            for &y in &coords {
+                for z in [1.0, 5e-324, 0.0, -5e-324] {
+                    let ray = Ray::new(DVec3::new(x, y, z), DVec3::new(0.0, 0.0, -1.0)).unwrap();
+                    let (ex, ey) = (exact(x), exact(y));
+                    let zero = num_rational::BigRational::from_integer(0.into());
+                    let one = num_rational::BigRational::from_integer(1.into());
+                    let in_domain = match name {
+                        "square" => ex >= zero && ey >= zero && ex <= one && ey <= one,
+                        _ => ex >= zero && ey >= zero && &ex + &ey <= one,
+                    };
+                    let real = in_domain && z >= 0.0;
+                    let out = intersect(patch, &ray, &default_options()).unwrap();
+                    let RayOutcome::Hits(h) = out else {
+                        panic!("{name} {x} {y} {z}: {out:?}")
+                    };
+                    let certified = h.hits.iter().filter(|h| h.certified).count();
+                    assert!(
+                        certified <= usize::from(real),
+                        "{name} ({x}, {y}, {z}): false certificate {h:?}"
+                    );
+                    if real {
+                        assert!(!h.hits.is_empty(), "{name} ({x}, {y}, {z}): missed");
+                        let subnormal = [x, y, z].iter().any(|c| *c != 0.0 && c.abs() < f64::MIN_POSITIVE);
+                        assert!(subnormal || certified == 1, "{name} ({x}, {y}, {z}): not settled {h:?}");
+                    }
+                }
+            }
+        }
+    }
+}

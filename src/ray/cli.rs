@@ -263,7 +263,7 @@ fn hit_json(h: &Hit) -> Value {
     json!({
         "t": h.t, "u": h.u, "v": h.v,
         "point": h.point.to_array(), "normal": h.normal.to_array(),
-        "certified": h.certified,
+        "certified": h.certified, "on_edge": h.on_edge, "t_straddles_zero": h.t_straddles_zero,
         "box": {"u": h.bx.u, "v": h.bx.v, "t": h.bx.t}
     })
 }
@@ -296,7 +296,15 @@ fn outcome_text(k: usize, o: &RayOutcome, nearest: bool) -> String {
             h.point.x,
             h.point.y,
             h.point.z,
-            if h.certified { "" } else { "  (undecided region)" },
+            if h.certified {
+                ""
+            } else if h.on_edge {
+                "  (within rounding of the patch's edge: hit or just a miss, undecided)"
+            } else if h.t_straddles_zero {
+                "  (t may be below 0: undecided)"
+            } else {
+                "  (undecided region)"
+            },
             h.bx.t[0],
             h.bx.t[1]
         );

@@ -33,6 +33,8 @@
 
 pub mod bspline;
 pub mod cli;
+mod settle;
+use settle::Settled;
 pub mod patch;
 pub mod sample;
 
@@ -119,8 +121,16 @@ pub struct Hit {
     /// one. `false`: an undecided region (grazing ray, close hits) that may
     /// hold any number of hits, including none.
     pub certified: bool,
-    /// The `t` box contains 0: the hit may lie at or just behind the origin.
+    /// The `t` box contains 0: the hit may lie at or just behind the origin
+    /// (then it is not certified: a hit needs `t ≥ 0`).
     pub t_straddles_zero: bool,
+    /// The `(u, v)` box reaches outside the patch's parameter domain: the
+    /// patch polynomial, continued past the edge, has exactly one simple root
+    /// in the box, but it lies within rounding of the edge, and whether it is
+    /// on the patch (a hit) or just past its edge (a miss) is not proven, so
+    /// `certified` is false. (B-spline pieces settle this across interior
+    /// knot lines, where the neighbouring piece continues the surface.)
+    pub on_edge: bool,
     /// The boxes; the hit's exact `(u, v, t)` lies in them.
     pub bx: HitBox,
 }
@@ -319,8 +329,8 @@ pub fn intersect_with(patch: &Patch, ray: &Ray, opts: &RayOptions) -> Result<Ray
         Solved::ZeroEquation => return Ok(RayOutcome::Degenerate(Degeneracy::ZeroEquation)),
     };
     let mut hits = match patch {
-        Patch::Triangle(p) => collect_hits(&sol, p.inet(), patch, &planes),
-        Patch::Tensor(p) => collect_hits(&sol, p.inet(), patch, &planes),
+        Patch::Triangle(p) => collect_hits(&sol, p.inet(), patch, ray, &planes),
+        Patch::Tensor(p) => collect_hits(&sol, p.inet(), patch, ray, &planes),
         // Returned by the first match; delegating again keeps this one total.
         Patch::Bspline(s) => return bspline::intersect_bspline(s, ray, opts),
     };
@@ -432,27 +442,9 @@ fn intersect_rect(p: &TensorPatch, patch: &Patch, ray: &Ray, opts: &RayOptions) 
         .map(|r| (r.bx, true))
         .chain(sol.clusters.iter().map(|c| (c.bx, false)));
     let mut hits: Vec<Hit> = regions
-        .filter_map(|(bx, certified)| {
+        .filter_map(|(bx, root)| {
             let t = t_of(bx);
-            if t.hi < 0.0 {
-                return None;
-            }
-            let (u, v) = (0.5 * (bx.u[0] + bx.u[1]), 0.5 * (bx.v[0] + bx.v[1]));
-            let (point, normal) = patch.point_and_normal(u, v);
-            Some(Hit {
-                t: t.mid(),
-                u,
-                v,
-                point,
-                normal,
-                certified,
-                t_straddles_zero: t.lo <= 0.0,
-                bx: HitBox {
-                    u: bx.u,
-                    v: bx.v,
-                    t: [t.lo, t.hi],
-                },
-            })
+            Hit::of_region(patch, ray, bx, root, [t.lo, t.hi])
         })
         .collect();
     hits.sort_by(|a, b| a.t.total_cmp(&b.t).then(a.u.total_cmp(&b.u)).then(a.v.total_cmp(&b.v)));
@@ -599,14 +591,14 @@ impl HasCoeffs for TensorBezier<Interval> {
 
 /// Roots and clusters become hits (clusters with `certified = false`); hits
 /// with `t` provably negative are dropped; sorted by `t`.
-fn collect_hits<P: Bb<Interval>>(sol: &Solution, net: &Net<P>, patch: &Patch, planes: &Planes) -> Vec<Hit> {
+fn collect_hits<P: Bb<Interval>>(sol: &Solution, net: &Net<P>, patch: &Patch, ray: &Ray, planes: &Planes) -> Vec<Hit> {
     let regions = sol
         .roots
         .iter()
         .map(|r| (r.bx, true))
         .chain(sol.clusters.iter().map(|c| (c.bx, false)));
     let mut hits: Vec<Hit> = regions
-        .filter_map(|(bx, certified)| hit_of(bx, certified, net, patch, planes))
+        .filter_map(|(bx, certified)| hit_of(bx, certified, net, patch, ray, planes))
         .collect();
     hits.sort_by(|a, b| a.t.total_cmp(&b.t).then(a.u.total_cmp(&b.u)).then(a.v.total_cmp(&b.v)));
     hits
@@ -639,25 +631,65 @@ fn t_over<P: Bb<Interval>>(net: &Net<P>, planes: &Planes, uu: Interval, vv: Inte
     t
 }
 
-fn hit_of<P: Bb<Interval>>(bx: Box2, certified: bool, net: &Net<P>, patch: &Patch, planes: &Planes) -> Option<Hit> {
+fn hit_of<P: Bb<Interval>>(
+    bx: Box2,
+    certified: bool,
+    net: &Net<P>,
+    patch: &Patch,
+    ray: &Ray,
+    planes: &Planes,
+) -> Option<Hit> {
     let (uu, vv) = (interval(bx.u[0], bx.u[1]), interval(bx.v[0], bx.v[1]));
     let t = t_over(net, planes, uu, vv);
-    if t.sup() < 0.0 {
-        return None;
+    Hit::of_region(patch, ray, bx, certified, [t.inf(), t.sup()])
+}
+
+impl Hit {
+    /// The hit of a solver region: a certified root (`root`) or an undecided
+    /// cluster, with its `t` enclosure; `None` if `t` is provably negative.
+    /// Certified only if, beyond the root's certificate, the root is proven
+    /// to lie in the patch's closed domain (else [`Hit::on_edge`]) and at
+    /// `t ≥ 0`: by the boxes, or, where rounding leaves either in doubt, in
+    /// exact arithmetic (`settle.rs`), which may also prove a miss (`None`).
+    fn of_region(patch: &Patch, ray: &Ray, bx: Box2, root: bool, t: [f64; 2]) -> Option<Self> {
+        if t[1] < 0.0 {
+            return None;
+        }
+        let mut inside = patch_domain_contains(patch, bx);
+        let mut t_proven = t[0] >= 0.0 && t[1].is_finite();
+        let mut t = t;
+        if root && !(inside && t_proven) {
+            match settle::settle(patch, ray, bx) {
+                Settled::Hit => {
+                    (inside, t_proven) = (true, true);
+                    t[0] = t[0].max(0.0);
+                }
+                Settled::Miss => return None,
+                Settled::Undecided => {}
+            }
+        }
+        let (u, v) = (0.5 * (bx.u[0] + bx.u[1]), 0.5 * (bx.v[0] + bx.v[1]));
+        let (point, normal) = patch.point_and_normal(u, v);
+        Some(Hit {
+            t: 0.5 * (t[0] + t[1]),
+            u,
+            v,
+            point,
+            normal,
+            certified: root && inside && t_proven,
+            t_straddles_zero: t[0] <= 0.0,
+            on_edge: root && !inside,
+            bx: HitBox { u: bx.u, v: bx.v, t },
+        })
     }
-    let (u, v) = (uu.mid(), vv.mid());
-    Some(Hit {
-        t: t.mid(),
-        u,
-        v,
-        point: patch.eval(u, v),
-        normal: patch.normal(u, v),
-        certified,
-        t_straddles_zero: t.inf() <= 0.0,
-        bx: HitBox {
-            u: bx.u,
-            v: bx.v,
-            t: [t.inf(), t.sup()],
-        },
-    })
+}
+
+/// The closed box lies in the patch's closed parameter domain (the unit
+/// square, or the triangle `u, v ≥ 0, u + v ≤ 1` with the sum rounded up).
+fn patch_domain_contains(patch: &Patch, bx: Box2) -> bool {
+    let lower = bx.u[0] >= 0.0 && bx.v[0] >= 0.0;
+    match patch {
+        Patch::Triangle(_) => lower && (point(bx.u[1]) + point(bx.v[1])).sup() <= 1.0,
+        _ => lower && bx.u[1] <= 1.0 && bx.v[1] <= 1.0,
+    }
 }

@@ -46,6 +46,9 @@ pub struct TensorPatch {
     /// The homogeneous net `(wx, wy, wz, w)` per control point as [`Iv`]
     /// enclosures (the same sets as `inet`), for the box route's hot path.
     ivnet: Vec<[Iv; 4]>,
+    /// The patch is exactly its `points` and `weights` (false once
+    /// [`TensorPatch::widen`] made it stand for nearby nets).
+    exact: bool,
 }
 
 /// A Bézier patch of either kind, or a B-spline/NURBS surface (intersected
@@ -291,7 +294,14 @@ impl TensorPatch {
             net: lift(net)?,
             inet: lift(inet)?,
             ivnet,
+            exact: true,
         })
+    }
+
+    /// The patch is exactly the surface of its stored floats (not a B-spline
+    /// piece whose net carries knot-insertion error).
+    pub(crate) fn net_is_exact(&self) -> bool {
+        self.exact
     }
 
     /// Widens every homogeneous coordinate's enclosure by `err` on each side
@@ -299,6 +309,7 @@ impl TensorPatch {
     /// for every net within `err` of its points, e.g. the exact Bézier pieces
     /// of a B-spline whose knot insertion ran in `f64` with that error bound.
     pub(crate) fn widen(&mut self, err: f64) -> Result<()> {
+        self.exact = false;
         let rational = self.weights.is_some();
         for row in &mut self.ivnet {
             for (c, x) in row.iter_mut().enumerate() {

@@ -68,7 +68,7 @@ fn degree(p: &[BigRational]) -> Option<usize> {
 }
 
 /// Monic gcd over ℚ by Euclid (zero polynomial = empty).
-fn gcd(mut a: Vec<BigRational>, mut b: Vec<BigRational>) -> Vec<BigRational> {
+pub(crate) fn gcd(mut a: Vec<BigRational>, mut b: Vec<BigRational>) -> Vec<BigRational> {
     trim(&mut a);
     trim(&mut b);
     while !b.is_empty() {

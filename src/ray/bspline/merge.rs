@@ -52,6 +52,12 @@ use crate::scalar::{interval, point};
 use inari::Interval;
 use std::collections::BTreeMap;
 
+/// A piece proved exactly one root of its polynomial in the hit's box (on
+/// the piece, or within rounding of its edge).
+fn proven_root(h: &Hit) -> bool {
+    h.certified || h.on_edge
+}
+
 fn overlaps(a: [f64; 2], b: [f64; 2]) -> bool {
     a[0] <= b[1] && b[0] <= a[1]
 }
@@ -72,7 +78,7 @@ pub(super) fn merge_knot_line_duplicates(surface: &BsplineSurface, ray: &Ray, fo
     for i in 0..n {
         for j in i + 1..n {
             let ((a, pa), (b, pb)) = (&found[i], &found[j]);
-            if a.certified && b.certified && pa != pb && overlaps(a.bx.u, b.bx.u) && overlaps(a.bx.v, b.bx.v) {
+            if proven_root(a) && proven_root(b) && pa != pb && overlaps(a.bx.u, b.bx.u) && overlaps(a.bx.v, b.bx.v) {
                 let (ri, rj) = (root(&mut parent, i), root(&mut parent, j));
                 parent[ri] = rj;
             }
@@ -86,7 +92,9 @@ pub(super) fn merge_knot_line_duplicates(surface: &BsplineSurface, ray: &Ray, fo
     let mut planes = None;
     let mut out = Vec::new();
     for group in groups.into_values() {
-        if group.len() == 1 {
+        // A single report needs the piecewise proof only when its piece
+        // could not place its root on the piece (the box crosses a knot line).
+        if group.len() == 1 && !group[0].on_edge {
             out.extend(group);
             continue;
         }
@@ -120,13 +128,20 @@ fn merged_hit(surface: &BsplineSurface, planes: &RayPlanes, k: IBox) -> Option<H
     }
     let (u, v) = (k[0].mid(), k[1].mid());
     let (su, sv) = surface.partials(u, v);
+    // The zero of the piecewise system is a hit if it lies on the surface's
+    // closed parameter domain (the outer pieces' extensions are not) and
+    // t ≥ 0 is proven.
+    let (bu, bv) = (&surface.breaks_u, &surface.breaks_v);
+    let inside =
+        k[0].inf() >= bu[0] && k[0].sup() <= bu[bu.len() - 1] && k[1].inf() >= bv[0] && k[1].sup() <= bv[bv.len() - 1];
     Some(Hit {
         t: t.mid(),
         u,
         v,
         point: surface.eval(u, v),
         normal: su.cross(sv).normalize_or_zero(),
-        certified: true,
+        certified: inside && t.inf() >= 0.0 && t.sup().is_finite(),
+        on_edge: !inside,
         t_straddles_zero: t.inf() <= 0.0,
         bx: HitBox {
             u: [k[0].inf(), k[0].sup()],

@@ -722,16 +722,20 @@ impl Runner {
     /// Records a certified root; `key` bounds the objective over a box that
     /// holds it (for the queries).
     fn add_root(&mut self, bx: IBox, id: u32, key: (f64, f64)) {
-        if self.shape.has_key {
-            let above = self.opts.key_min.is_none_or(|m| key.0 >= m);
-            if above {
+        // Only a root proven to lie in the closed domain may end or prune a
+        // query: one within rounding of an edge may be a root of the
+        // polynomial's continuation past it (for a ray, a miss).
+        let d = self.problem.domain;
+        let inside = (0..2).all(|a| bx[a].inf() >= d[a][0].hi && bx[a].sup() <= d[a][1].lo);
+        // (Without an objective every root counts as above the floor.)
+        let above = !self.shape.has_key || self.opts.key_min.is_none_or(|m| key.0 >= m);
+        if inside && above {
+            if self.shape.has_key {
                 self.best = self.best.min(key.1);
-                if self.opts.query == Query::Any {
-                    self.stopped_early = true;
-                }
             }
-        } else if self.opts.query == Query::Any {
-            self.stopped_early = true;
+            if self.opts.query == Query::Any {
+                self.stopped_early = true;
+            }
         }
         self.found.push(Found {
             bx,
