@@ -34,7 +34,7 @@
 pub mod bspline;
 pub mod cli;
 mod settle;
-use settle::Settled;
+use crate::solve::settle::Settled;
 pub mod patch;
 pub mod sample;
 
@@ -660,11 +660,11 @@ impl Hit {
         let mut t = t;
         if root && !(inside && t_proven) {
             match settle::settle(patch, ray, bx) {
-                Settled::Hit => {
+                Settled::Inside => {
                     (inside, t_proven) = (true, true);
                     t[0] = t[0].max(0.0);
                 }
-                Settled::Miss => return None,
+                Settled::Outside => return None,
                 Settled::Undecided => {}
             }
         }

@@ -20,6 +20,7 @@ pub mod krawczyk;
 pub mod method;
 pub mod num;
 pub mod rect;
+pub mod settle;
 pub mod tribox;
 
 use crate::error::{Error, Result};
@@ -163,6 +164,10 @@ pub enum ClusterReason {
     /// The region is a thin strip along the edge; the rest of the domain is
     /// solved as usual.
     VanishingEdge,
+    /// The box holds exactly one simple root, within rounding of the
+    /// domain's boundary, and exact arithmetic could not tell whether it
+    /// lies in the domain or just outside it.
+    BoundaryUndecided,
 }
 
 impl ClusterReason {
@@ -171,6 +176,9 @@ impl ClusterReason {
         match self {
             ClusterReason::KrawczykUndecided => {
                 "Krawczyk undecided: multiple root (tangential curves) or roots closer than eps"
+            }
+            ClusterReason::BoundaryUndecided => {
+                "one simple root within rounding of the domain's boundary: inside or just outside is undecided"
             }
             ClusterReason::VanishingEdge => {
                 "both equations may vanish along this domain edge (a curve of roots, e.g. a collapsed patch edge)"
@@ -327,19 +335,34 @@ pub fn solve(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions
             let (tf, tg) = (ef.map(enclose), eg.map(enclose));
             check_system(&tf, &tg)?;
             let global = System::new(tf.clone(), tg.clone());
+            let sys = settle::ExactSystem::new(
+                settle::Shape::Triangle(n),
+                ef.coeffs().to_vec(),
+                eg.coeffs().to_vec(),
+                None,
+            )?;
             let piece = Piece {
                 f: tf,
                 g: tg,
                 frame: Frame::Identity,
                 exact: Some([ef, eg]),
             };
-            Ok(solve_pieces(vec![piece], &global, Domain::Triangle, opts))
+            Ok(settle_boundary(
+                solve_pieces(vec![piece], &global, Domain::Triangle, opts),
+                &sys,
+            ))
         }
         Domain::Square => {
             check_options(opts)?;
             let ((m, n), (p, q)) = (f.degrees(), g.degrees());
             let (dm, dn) = (m.max(p) as usize, n.max(q) as usize);
             let (ef, eg) = (f.to_square().elevate(dm, dn)?, g.to_square().elevate(dm, dn)?);
+            let sys = settle::ExactSystem::new(
+                settle::Shape::Tensor(dm, dn),
+                ef.coeffs().to_vec(),
+                eg.coeffs().to_vec(),
+                None,
+            )?;
             if opts.square_route != SquareRoute::Triangles {
                 let ropts = rect::RectOptions {
                     eps: opts.eps,
@@ -353,7 +376,7 @@ pub fn solve(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions
                 };
                 let sol = rect::solve_rect(&ef.map(enclose), &eg.map(enclose), None, &ropts)?.solution;
                 if sol.complete {
-                    return Ok(sol);
+                    return Ok(settle_boundary(sol, &sys));
                 }
                 // Out of budget (e.g. two curves running nearly parallel
                 // along a diagonal, which axis-aligned boxes separate only
@@ -361,9 +384,37 @@ pub fn solve(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions
                 // curves and exact restarts handle those.
             }
             let exact = Some((ef.to_triangles(), eg.to_triangles()));
-            square_pieces(&ef.map(enclose), &eg.map(enclose), exact, opts)
+            Ok(settle_boundary(
+                square_pieces(&ef.map(enclose), &eg.map(enclose), exact, opts)?,
+                &sys,
+            ))
         }
     }
+}
+
+/// Settles every certified root whose box touches the domain's boundary in
+/// exact arithmetic ([`settle`]): kept if it is in the closed domain,
+/// dropped if it is outside, and turned into a
+/// [`ClusterReason::BoundaryUndecided`] region if neither is proven.
+fn settle_boundary(mut sol: Solution, sys: &settle::ExactSystem) -> Solution {
+    let mut kept = Vec::with_capacity(sol.roots.len());
+    for r in std::mem::take(&mut sol.roots) {
+        if !r.on_boundary {
+            kept.push(r);
+            continue;
+        }
+        match sys.settle(r.bx) {
+            settle::Settled::Inside => kept.push(r),
+            settle::Settled::Outside => sol.stats.outside_domain += 1,
+            settle::Settled::Undecided => sol.clusters.push(Cluster {
+                bx: r.bx,
+                reason: ClusterReason::BoundaryUndecided,
+                diameters: r.diameters,
+            }),
+        }
+    }
+    sol.roots = kept;
+    sol
 }
 
 fn check_options(opts: &SolveOptions) -> Result<()> {

@@ -1,0 +1,504 @@
+//! Settling, in exact arithmetic, the certified roots that rounding leaves
+//! on the domain's boundary: a root whose certified box crosses an edge of
+//! the domain may lie in it or within rounding outside it, which interval
+//! arithmetic cannot tell. For exact (rational) systems the question has an
+//! exact answer; [`ExactSystem::settle`] finds it, optionally together with
+//! the sign of a third polynomial `h` at the root (the ray front end's `t`).
+//!
+//! # On an edge: a gcd
+//! The root lies on an edge `E` crossed by the box iff both equations
+//! restricted to `E` share a root in the box's range: if `gcd(F, G)`
+//! (Euclid over ℚ, power basis) changes sign or vanishes on the part of
+//! that range within the edge, `E` holds a root of the system inside the
+//! box, and the box holds only one: the root is in the closed domain.
+//!
+//! # Off an edge: Krawczyk in exact arithmetic
+//! Otherwise the box is contracted by `X ← K(X) ∩ X` with rational interval
+//! arithmetic (`K(X) = x̃ − Y F(x̃) + (I − Y J(X))(X − x̃)`, endpoints rounded
+//! outward to dyadics a little finer than the box, so sizes stay bounded),
+//! which converges on the simple root, until the box is provably inside the
+//! domain (and `h ≥ 0` on it, if asked), provably outside it (or `h < 0`),
+//! or an iteration limit is reached (still undecided). A root exactly on an
+//! edge never separates from it, which is why the gcd comes first; `h = 0`
+//! exactly at the root (for a ray: the origin on the surface) is settled
+//! as `h ≥ 0` only where the box's enclosure of `h` is already `≥ 0`.
+//!
+//! Used by [`super::solve`] for exact input, and by the ray front end, whose
+//! reduction it repeats in rationals with exact plane normals.
+
+use super::degenerate::gcd;
+use super::Box2;
+use crate::error::{Error, Result};
+use crate::poly::{tri_index, tri_len};
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{One, Signed, ToPrimitive, Zero};
+
+type Q = BigRational;
+
+/// What exact arithmetic says about a certified root.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Settled {
+    /// The root lies in the closed domain (and `h ≥ 0` there, if given).
+    Inside,
+    /// The root lies outside the domain (or `h < 0` there).
+    Outside,
+    /// Still undecided (on an edge with an even-multiplicity gcd root, `h`
+    /// exactly 0 at the root, or the iteration limit).
+    Undecided,
+}
+
+/// Contraction steps of [`ExactSystem::refine`]: each roughly squares the
+/// box width (or, on a nearly linear system, multiplies it by ~1e-16), so
+/// 24 take 1e-16 below the smallest float either way.
+const REFINE_STEPS: usize = 24;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Edge {
+    U0,
+    U1,
+    V0,
+    V1,
+    /// `u + v = 1` of a triangle.
+    Hypotenuse,
+}
+
+/// The domain and basis of an [`ExactSystem`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shape {
+    /// Degree `n` on the unit triangle (storage order of [`tri_index`]).
+    Triangle(usize),
+    /// Bidegree `(m, n)` on the unit square (row-major).
+    Tensor(usize, usize),
+}
+
+impl Shape {
+    fn len(self) -> usize {
+        match self {
+            Shape::Triangle(n) => tri_len(n),
+            Shape::Tensor(m, n) => (m + 1) * (n + 1),
+        }
+    }
+}
+
+/// A system `f = g = 0` with exact rational BB coefficients on the unit
+/// triangle or square, and optionally a third polynomial `h` whose sign at
+/// the root is wanted.
+#[derive(Clone, Debug)]
+pub struct ExactSystem {
+    shape: Shape,
+    f: [Vec<Q>; 2],
+    h: Option<Vec<Q>>,
+    /// `∂f_k/∂u`, `∂f_k/∂v` (shapes one degree lower in that variable).
+    df: [[Vec<Q>; 2]; 2],
+}
+
+impl ExactSystem {
+    /// The system `f = g = 0` (coefficients in `shape`'s storage order) and
+    /// the optional `h`, all of the same shape. Errors on a length mismatch.
+    pub fn new(shape: Shape, f: Vec<Q>, g: Vec<Q>, h: Option<Vec<Q>>) -> Result<Self> {
+        let len = shape.len();
+        if f.len() != len || g.len() != len || h.as_ref().is_some_and(|h| h.len() != len) {
+            return Err(Error::Shape(format!(
+                "{shape:?} needs {len} coefficients per polynomial"
+            )));
+        }
+        let df = [derivs(shape, &f), derivs(shape, &g)];
+        Ok(Self {
+            shape,
+            f: [f, g],
+            h,
+            df,
+        })
+    }
+
+    /// Settles the root certified in `bx` (exactly one simple root of the
+    /// system in the closed box): is it in the closed domain, and is `h ≥ 0`
+    /// there? See the module docs.
+    pub fn settle(&self, bx: Box2) -> Settled {
+        let q = |x: f64| Q::from_float(x);
+        let (Some(u0), Some(u1), Some(v0), Some(v1)) = (q(bx.u[0]), q(bx.u[1]), q(bx.v[0]), q(bx.v[1])) else {
+            return Settled::Undecided;
+        };
+        let x = [RI::new(u0, u1), RI::new(v0, v1)];
+        let inside = self.domain_contains(&x);
+        if inside == Some(false) {
+            return Settled::Outside;
+        }
+        if inside == Some(true) || self.on_crossed_edge(&x) {
+            // In the closed domain; then only h can be in doubt.
+            return match self.h_sign(&x) {
+                Some(true) => Settled::Inside,
+                Some(false) => Settled::Outside,
+                None => self.refine(x, true),
+            };
+        }
+        self.refine(x, false)
+    }
+
+    /// `Some(true)`: the box lies in the closed domain; `Some(false)`: it
+    /// lies outside it; `None`: neither is proven.
+    fn domain_contains(&self, x: &[RI; 2]) -> Option<bool> {
+        let (zero, one) = (Q::zero(), Q::one());
+        let lower_in = x[0].lo >= zero && x[1].lo >= zero;
+        let lower_out = x[0].hi < zero || x[1].hi < zero;
+        match self.shape {
+            Shape::Tensor(..) => {
+                if lower_out || x[0].lo > one || x[1].lo > one {
+                    Some(false)
+                } else if lower_in && x[0].hi <= one && x[1].hi <= one {
+                    Some(true)
+                } else {
+                    None
+                }
+            }
+            Shape::Triangle(_) => {
+                if lower_out || &x[0].lo + &x[1].lo > one {
+                    Some(false)
+                } else if lower_in && &x[0].hi + &x[1].hi <= one {
+                    Some(true)
+                } else {
+                    None
+                }
+            }
+        }
+    }
+
+    /// The root in `x` (unique) lies on an edge the box crosses (the gcd
+    /// test of the module docs).
+    fn on_crossed_edge(&self, x: &[RI; 2]) -> bool {
+        let (zero, one) = (Q::zero(), Q::one());
+        let clip = |lo: &Q, hi: &Q| (lo.clone().max(zero.clone()), hi.clone().min(one.clone()));
+        let [u, v] = x;
+        let mut edges: Vec<(Edge, (Q, Q))> = Vec::new();
+        if u.lo < zero {
+            edges.push((Edge::U0, clip(&v.lo, &v.hi)));
+        }
+        if v.lo < zero {
+            edges.push((Edge::V0, clip(&u.lo, &u.hi)));
+        }
+        match self.shape {
+            Shape::Tensor(..) => {
+                if u.hi > one {
+                    edges.push((Edge::U1, clip(&v.lo, &v.hi)));
+                }
+                if v.hi > one {
+                    edges.push((Edge::V1, clip(&u.lo, &u.hi)));
+                }
+            }
+            Shape::Triangle(_) => {
+                if &u.hi + &v.hi > one {
+                    // Along u + v = 1, parametrized by u: u ∈ U and 1 − u ∈ V.
+                    let lo = u.lo.clone().max(&one - &v.hi);
+                    let hi = u.hi.clone().min(&one - &v.lo);
+                    edges.push((Edge::Hypotenuse, clip(&lo, &hi)));
+                }
+            }
+        }
+        edges.into_iter().any(|(edge, (lo, hi))| {
+            if lo > hi {
+                return false;
+            }
+            let [f, g] = [0, 1].map(|k| bernstein_to_power(&self.edge(&self.f[k], edge)));
+            let h = gcd(f, g);
+            if h.len() < 2 {
+                return false;
+            }
+            let (a, b) = (horner(&h, &lo), horner(&h, &hi));
+            !(a.is_positive() && b.is_positive() || a.is_negative() && b.is_negative())
+        })
+    }
+
+    /// The Bernstein coefficients of `c` restricted to `edge`, in its
+    /// parameter (`v` on `u = 0, 1`; `u` on the others).
+    fn edge(&self, c: &[Q], edge: Edge) -> Vec<Q> {
+        match (self.shape, edge) {
+            (Shape::Tensor(_, n), Edge::U0) => (0..=n).map(|j| c[j].clone()).collect(),
+            (Shape::Tensor(m, n), Edge::U1) => (0..=n).map(|j| c[m * (n + 1) + j].clone()).collect(),
+            (Shape::Tensor(m, n), Edge::V0) => (0..=m).map(|i| c[i * (n + 1)].clone()).collect(),
+            (Shape::Tensor(m, n), Edge::V1) => (0..=m).map(|i| c[i * (n + 1) + n].clone()).collect(),
+            (Shape::Triangle(n), Edge::U0) => (0..=n).map(|j| c[tri_index(n, 0, j)].clone()).collect(),
+            (Shape::Triangle(n), Edge::V0) => (0..=n).map(|i| c[tri_index(n, i, 0)].clone()).collect(),
+            // B_{i, n−i, 0}(u, 1 − u) = C(n, i) u^i (1 − u)^(n−i).
+            (Shape::Triangle(n), Edge::Hypotenuse) => (0..=n).map(|i| c[tri_index(n, i, n - i)].clone()).collect(),
+            _ => Vec::new(),
+        }
+    }
+
+    /// `Some(true)`: `h ≥ 0` on the box (or no `h`); `Some(false)`: `h < 0`.
+    fn h_sign(&self, x: &[RI; 2]) -> Option<bool> {
+        let Some(h) = &self.h else {
+            return Some(true);
+        };
+        let h = eval(self.shape, h, x);
+        if !h.lo.is_negative() {
+            Some(true)
+        } else if h.hi.is_negative() {
+            Some(false)
+        } else {
+            None
+        }
+    }
+
+    /// Contracts `x` on its root by exact Krawczyk steps until the root is
+    /// settled (module docs). `in_domain`: the root is already known to be
+    /// in the closed domain.
+    fn refine(&self, mut x: [RI; 2], in_domain: bool) -> Settled {
+        for _ in 0..REFINE_STEPS {
+            let Some(k) = self.krawczyk(&x) else {
+                return Settled::Undecided;
+            };
+            let (Some(a), Some(b)) = (k[0].meet(&x[0]), k[1].meet(&x[1])) else {
+                // K(X) ∩ X = ∅ would prove no root: impossible for a
+                // certified box; distrust and give up.
+                return Settled::Undecided;
+            };
+            x = [a, b];
+            let inside = if in_domain {
+                Some(true)
+            } else {
+                self.domain_contains(&x)
+            };
+            match (inside, self.h_sign(&x)) {
+                (Some(false), _) | (_, Some(false)) => return Settled::Outside,
+                (Some(true), Some(true)) => return Settled::Inside,
+                _ => {}
+            }
+        }
+        Settled::Undecided
+    }
+
+    /// `K(X) = x̃ − Y F(x̃) + (I − Y J(X))(X − x̃)`, endpoints rounded outward.
+    fn krawczyk(&self, x: &[RI; 2]) -> Option<[RI; 2]> {
+        let width = x[0].width().max(x[1].width());
+        let bits = precision_bits(&width)?;
+        let mid = [x[0].mid_rounded(bits), x[1].mid_rounded(bits)];
+        let pt = [RI::point(mid[0].clone()), RI::point(mid[1].clone())];
+        let fm = [0, 1].map(|k| eval(self.shape, &self.f[k], &pt).lo);
+        let jm: [[Q; 2]; 2] = [0, 1].map(|k| [0, 1].map(|d| eval_deriv(self.shape, &self.df[k][d], d, &pt).lo));
+        let y = inverse_f64(&jm)?;
+        let jx: [[RI; 2]; 2] = [0, 1].map(|k| [0, 1].map(|d| eval_deriv(self.shape, &self.df[k][d], d, x)));
+        let dx = [x[0].sub_point(&mid[0]), x[1].sub_point(&mid[1])];
+        let mut out: [RI; 2] = [RI::point(Q::zero()), RI::point(Q::zero())];
+        for (i, o) in out.iter_mut().enumerate() {
+            let yf = &y[i][0] * &fm[0] + &y[i][1] * &fm[1];
+            let mut acc = RI::point(&mid[i] - yf);
+            for (j, dxj) in dx.iter().enumerate() {
+                // (I − Y J)_ij = δ_ij − Σ_l Y_il J_lj
+                let yj = jx[0][j].scale(&y[i][0]).add(&jx[1][j].scale(&y[i][1]));
+                let delta = if i == j { Q::one() } else { Q::zero() };
+                let m = RI::point(delta).sub(&yj);
+                acc = acc.add(&m.mul(dxj));
+            }
+            *o = acc.round_out(bits);
+        }
+        Some(out)
+    }
+}
+
+/// Bits after the binary point that keep rounding far below `width`.
+fn precision_bits(width: &Q) -> Option<u64> {
+    if !width.is_positive() {
+        return Some(64);
+    }
+    // log2(width) ≈ bits(numer) − bits(denom).
+    let e = width.numer().bits() as i64 - width.denom().bits() as i64;
+    let bits = (40 - e).max(64);
+    (bits < 1 << 20).then_some(bits as u64)
+}
+
+/// `Y ≈ J⁻¹` in `f64`, converted exactly (any `Y` keeps Krawczyk rigorous).
+fn inverse_f64(j: &[[Q; 2]; 2]) -> Option<[[Q; 2]; 2]> {
+    let a = j
+        .each_ref()
+        .map(|r| r.each_ref().map(|x| x.to_f64().unwrap_or(f64::NAN)));
+    let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+    let inv = [[a[1][1] / det, -a[0][1] / det], [-a[1][0] / det, a[0][0] / det]];
+    let q = |x: f64| Q::from_float(x);
+    Some([[q(inv[0][0])?, q(inv[0][1])?], [q(inv[1][0])?, q(inv[1][1])?]])
+}
+
+/// A closed interval with exact rational endpoints.
+#[derive(Clone, Debug, PartialEq)]
+struct RI {
+    lo: Q,
+    hi: Q,
+}
+
+impl RI {
+    fn new(lo: Q, hi: Q) -> Self {
+        Self { lo, hi }
+    }
+    fn point(x: Q) -> Self {
+        Self { lo: x.clone(), hi: x }
+    }
+    fn add(&self, b: &Self) -> Self {
+        Self::new(&self.lo + &b.lo, &self.hi + &b.hi)
+    }
+    fn sub(&self, b: &Self) -> Self {
+        Self::new(&self.lo - &b.hi, &self.hi - &b.lo)
+    }
+    fn sub_point(&self, b: &Q) -> Self {
+        Self::new(&self.lo - b, &self.hi - b)
+    }
+    fn scale(&self, s: &Q) -> Self {
+        let (a, b) = (&self.lo * s, &self.hi * s);
+        if s.is_negative() {
+            Self::new(b, a)
+        } else {
+            Self::new(a, b)
+        }
+    }
+    fn mul(&self, b: &Self) -> Self {
+        let p = [&self.lo * &b.lo, &self.lo * &b.hi, &self.hi * &b.lo, &self.hi * &b.hi];
+        let lo = p.iter().min().expect("four").clone();
+        let hi = p.iter().max().expect("four").clone();
+        Self::new(lo, hi)
+    }
+    fn width(&self) -> Q {
+        &self.hi - &self.lo
+    }
+    fn meet(&self, b: &Self) -> Option<Self> {
+        let lo = (&self.lo).max(&b.lo).clone();
+        let hi = (&self.hi).min(&b.hi).clone();
+        (lo <= hi).then(|| Self::new(lo, hi))
+    }
+    /// The midpoint rounded to a multiple of `2^-bits`.
+    fn mid_rounded(&self, bits: u64) -> Q {
+        let m = (&self.lo + &self.hi) / Q::from_integer(2.into());
+        let s = Q::from_integer(BigInt::one() << bits);
+        (m * &s).round() / s
+    }
+    /// Endpoints moved outward to multiples of `2^-bits`.
+    fn round_out(&self, bits: u64) -> Self {
+        let s = Q::from_integer(BigInt::one() << bits);
+        Self::new((&self.lo * &s).floor() / &s, (&self.hi * &s).ceil() / &s)
+    }
+}
+
+/// `∂c/∂u` (`d = 0`) or `∂c/∂v` (`d = 1`) coefficients, exactly.
+fn derivs(shape: Shape, c: &[Q]) -> [Vec<Q>; 2] {
+    match shape {
+        Shape::Tensor(m, n) => {
+            let at = |i: usize, j: usize| &c[i * (n + 1) + j];
+            let (qm, qn) = (Q::from_integer(m.into()), Q::from_integer(n.into()));
+            let du = (0..m)
+                .flat_map(|i| (0..=n).map(move |j| (i, j)))
+                .map(|(i, j)| &qm * (at(i + 1, j) - at(i, j)))
+                .collect();
+            let dv = (0..=m)
+                .flat_map(|i| (0..n).map(move |j| (i, j)))
+                .map(|(i, j)| &qn * (at(i, j + 1) - at(i, j)))
+                .collect();
+            [du, dv]
+        }
+        Shape::Triangle(n) => {
+            let qn = Q::from_integer(n.into());
+            let at = |i: usize, j: usize| &c[tri_index(n, i, j)];
+            let mut du = Vec::new();
+            let mut dv = Vec::new();
+            for j in 0..n {
+                for i in 0..n - j {
+                    du.push(&qn * (at(i + 1, j) - at(i, j)));
+                    dv.push(&qn * (at(i, j + 1) - at(i, j)));
+                }
+            }
+            [du, dv]
+        }
+    }
+}
+
+/// A derivative's enclosure over `x` (its shape is one degree lower in `d`).
+fn eval_deriv(shape: Shape, c: &[Q], d: usize, x: &[RI; 2]) -> RI {
+    let lower = match shape {
+        Shape::Tensor(m, n) if d == 0 => Shape::Tensor(m.saturating_sub(1), n),
+        Shape::Tensor(m, n) => Shape::Tensor(m, n.saturating_sub(1)),
+        Shape::Triangle(n) => Shape::Triangle(n.saturating_sub(1)),
+    };
+    if c.is_empty() {
+        return RI::point(Q::zero());
+    }
+    eval(lower, c, x)
+}
+
+/// An enclosure of the polynomial over the box `x`, by de Casteljau in
+/// rational interval arithmetic.
+fn eval(shape: Shape, c: &[Q], x: &[RI; 2]) -> RI {
+    let one = RI::point(Q::one());
+    let lerp = |a: &RI, b: &RI, t: &RI, s: &RI| a.mul(s).add(&b.mul(t));
+    match shape {
+        Shape::Tensor(m, n) => {
+            let (su, sv) = (one.sub(&x[0]), one.sub(&x[1]));
+            let mut col: Vec<RI> = (0..=m)
+                .map(|i| {
+                    let mut row: Vec<RI> = (0..=n).map(|j| RI::point(c[i * (n + 1) + j].clone())).collect();
+                    for r in (1..=n).rev() {
+                        for j in 0..r {
+                            row[j] = lerp(&row[j], &row[j + 1], &x[1], &sv);
+                        }
+                    }
+                    row.swap_remove(0)
+                })
+                .collect();
+            for r in (1..=m).rev() {
+                for i in 0..r {
+                    col[i] = lerp(&col[i], &col[i + 1], &x[0], &su);
+                }
+            }
+            col.swap_remove(0)
+        }
+        Shape::Triangle(n) => {
+            let w = one.sub(&x[0]).sub(&x[1]);
+            let mut net: Vec<RI> = c.iter().cloned().map(RI::point).collect();
+            for m in (1..=n).rev() {
+                let mut next = Vec::with_capacity(m * (m + 1) / 2);
+                for j in 0..m {
+                    for i in 0..m - j {
+                        let a = net[tri_index(m, i + 1, j)].mul(&x[0]);
+                        let b = net[tri_index(m, i, j + 1)].mul(&x[1]);
+                        let cc = net[tri_index(m, i, j)].mul(&w);
+                        next.push(a.add(&b).add(&cc));
+                    }
+                }
+                net = next;
+            }
+            net.swap_remove(0)
+        }
+    }
+}
+
+/// `Σ b_i C(m, i) s^i (1 − s)^(m−i)` in the power basis (ascending).
+fn bernstein_to_power(b: &[Q]) -> Vec<Q> {
+    let m = b.len().saturating_sub(1);
+    let binom = |n: usize, k: usize| -> BigInt { (0..k).fold(BigInt::one(), |acc, i| acc * (n - i) / (i + 1)) };
+    let mut out = vec![Q::zero(); m + 1];
+    for (i, bi) in b.iter().enumerate() {
+        let ci = Q::from_integer(binom(m, i));
+        for k in 0..=m - i {
+            let mut term = bi * &ci * Q::from_integer(binom(m - i, k));
+            if k % 2 == 1 {
+                term = -term;
+            }
+            out[i + k] += term;
+        }
+    }
+    out
+}
+
+fn horner(p: &[Q], x: &Q) -> Q {
+    p.iter().rev().fold(Q::zero(), |acc, c| acc * x + c)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bernstein_to_power_matches_the_definition() {
+        // 1·B0 + 3·B1 + 2·B2 = (1−s)² + 6 s (1−s) + 2 s² = 1 + 4 s − 3 s².
+        let b: Vec<Q> = [1, 3, 2].iter().map(|&x| Q::from_integer(x.into())).collect();
+        let p = bernstein_to_power(&b);
+        let want: Vec<Q> = [1, 4, -3].iter().map(|&x| Q::from_integer(x.into())).collect();
+        assert_eq!(p, want);
+    }
+}
