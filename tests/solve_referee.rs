@@ -199,6 +199,59 @@ fn triple_roots_end_in_one_region_quickly() {
     }
 }
 
+/// Bézier clipping lost roots next to a second root 1e-7..1e-9 away
+/// (referee fuzzing): a coefficient enclosure straddling 0 was taken as a
+/// control point *at* 0, while its negative end, paired with positive
+/// neighbours, puts hull crossings away from it. Every exact root in the
+/// closed domain must lie in a returned region, for every method.
+#[test]
+fn close_roots_are_covered_by_every_method() {
+    let p = |s: &str| parse_polynomial(s).unwrap();
+    let cases = [
+        (
+            "(u-1/2)^2 - 1/1000000000000000000",
+            "v - 1/4",
+            Domain::Triangle,
+            vec![("499999999/1000000000", "1/4"), ("500000001/1000000000", "1/4")],
+        ),
+        (
+            "u^2 + 8*u*v + 16*v^2 - 27499997/30000000*u - 27499997/7500000*v + 151249967/720000000",
+            "4*u - 5*v - 11/6",
+            Domain::Triangle,
+            vec![("11/24", "0")],
+        ),
+        (
+            "16*u^2 + 8*u*v + v^2 - 16000000017/425000000*u - 16000000017/1700000000*v + 8000000017/361250000",
+            "2*v - 24/17",
+            Domain::Square,
+            vec![("1", "12/17")],
+        ),
+    ];
+    let inside = |lo: f64, hi: f64, x: &BigRational| {
+        BigRational::from_float(lo).unwrap() <= *x && *x <= BigRational::from_float(hi).unwrap()
+    };
+    for (f, g, domain, roots) in cases {
+        for method in Method::ALL {
+            let opts = SolveOptions {
+                method,
+                ..SolveOptions::default()
+            };
+            let sol = solve(&p(f), &p(g), domain, &opts).unwrap();
+            assert!(sol.complete, "{method} {f}; {g}");
+            for (u, v) in &roots {
+                let (u, v) = (q(u), q(v));
+                let covered = sol
+                    .roots
+                    .iter()
+                    .map(|r| r.bx)
+                    .chain(sol.clusters.iter().map(|c| c.bx))
+                    .any(|b| inside(b.u[0], b.u[1], &u) && inside(b.v[0], b.v[1], &v));
+                assert!(covered, "{method} {f}; {g}: root ({u}, {v}) missed: {sol:?}");
+            }
+        }
+    }
+}
+
 #[test]
 fn square_diagonal_root_is_reported_once() {
     let p = |s: &str| parse_polynomial(s).unwrap();

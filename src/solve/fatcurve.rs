@@ -556,30 +556,43 @@ fn roots_in_unit<G: Geo>(eq: &Quad<G>, keep: &mut impl FnMut(G) -> bool) {
 /// convex hull of the zero-valued points and the crossings of segments between
 /// a positive and a negative point; the minimum of those is the bound.
 pub fn bezier_bounds<S: Num>(f: &TriBezier<S>) -> ClipBounds {
-    let n = f.degree();
-    let pts: Vec<([usize; 3], S)> = crate::poly::tri_indices(n)
-        .zip(f.coeffs().iter().copied())
-        .map(|((i, j, k), c)| ([i, j, k], c))
-        .collect();
-    let pos: Vec<_> = pts.iter().filter(|p| p.1.sign_class() == Sign::Positive).collect();
-    let neg: Vec<_> = pts.iter().filter(|p| p.1.sign_class() == Sign::Negative).collect();
-    let zero: Vec<_> = pts
-        .iter()
-        .filter(|p| matches!(p.1.sign_class(), Sign::Zero | Sign::Straddles))
-        .collect();
-    if zero.is_empty() && (pos.is_empty() || neg.is_empty()) {
+    let n = f.degree().max(1);
+    // The control points (i/n, j/n, k/n; f_ijk) with each coefficient's
+    // enclosure as its two endpoints: the surface lies in the convex hull of
+    // all of them (whatever the exact coefficients are), and the hull meets
+    // z = 0 in the hull of the endpoints that are 0, of the points whose
+    // enclosure holds 0, and of the crossings of segments joining a positive
+    // and a negative endpoint. (An enclosure that straddles 0 is not a point
+    // at 0: its negative end pairs with positive neighbours, and the crossing
+    // can lie away from it.)
+    let mut ends: Vec<([usize; 3], f64)> = Vec::with_capacity(2 * f.coeffs().len());
+    let mut mins = [f64::INFINITY; 3];
+    for ((i, j, k), c) in crate::poly::tri_indices(f.degree()).zip(f.coeffs()) {
+        let (lo, hi) = (c.lower(), c.upper());
+        if lo.is_nan() || hi.is_nan() {
+            return ClipBounds::Keep([0.0; 3]);
+        }
+        if lo <= 0.0 && hi >= 0.0 {
+            for (m, x) in mins.iter_mut().zip([i, j, k]) {
+                *m = m.min(x as f64 / n as f64);
+            }
+        }
+        ends.push(([i, j, k], lo));
+        if hi != lo {
+            ends.push(([i, j, k], hi));
+        }
+    }
+    let (pos, neg): (Vec<&([usize; 3], f64)>, Vec<_>) = ends.iter().filter(|e| e.1 != 0.0).partition(|e| e.1 > 0.0);
+    if mins[0].is_infinite() && (pos.is_empty() || neg.is_empty()) {
         return ClipBounds::Empty;
     }
-    let nn = S::from_i64(n.max(1) as i64);
-    let mut mins = [f64::INFINITY; 3];
+    let nn = S::from_i64(n as i64);
     for (coord, m) in mins.iter_mut().enumerate() {
-        for z in &zero {
-            *m = m.min(z.0[coord] as f64 / n.max(1) as f64);
-        }
         for p in &pos {
             for q in &neg {
                 let (xp, xq) = (S::from_i64(p.0[coord] as i64) / nn, S::from_i64(q.0[coord] as i64) / nn);
-                let x = xp + (xq - xp) * (p.1 / (p.1 - q.1));
+                let (yp, yq) = (S::pt(p.1), S::pt(q.1));
+                let x = xp + (xq - xp) * (yp / (yp - yq));
                 *m = m.min(x.lower());
             }
         }
