@@ -120,7 +120,7 @@ fn noisy<S: Num>(p: &TriBezier<S>) -> bool {
 }
 
 /// The default [`Limits::max_exact`].
-pub const MAX_EXACT_BOXES: usize = 250;
+pub const MAX_EXACT_BOXES: usize = 64;
 
 /// With probing on, a tri-box that a clip brought below this diameter is
 /// offered to Krawczyk right away.
