@@ -253,18 +253,8 @@ fn lost_to_rounding<S: Num>(f: &TriBezier<S>, g: &TriBezier<S>) -> bool {
     let centre = [1.0 / 3.0; 3];
     let (_, a, _) = f.map(|x| x.to_f64()).jet2(&centre);
     let (_, b, _) = g.map(|x| x.to_f64()).jet2(&centre);
-    // J Jᵀ = [[p, q], [q, r]]; eigenvector of its smallest eigenvalue.
-    let (p, q, r) = (
-        a[0] * a[0] + a[1] * a[1],
-        a[0] * b[0] + a[1] * b[1],
-        b[0] * b[0] + b[1] * b[1],
-    );
-    let lam = 0.5 * (p + r) - (0.25 * (p - r) * (p - r) + q * q).sqrt();
-    let (v1, v2) = ([q, lam - p], [lam - r, q]);
-    let w = if v1[0].abs() + v1[1].abs() >= v2[0].abs() + v2[1].abs() {
-        v1
-    } else {
-        v2
+    let Some(w) = super::method::smallest_singular_left([a[0], a[1], b[0], b[1]]) else {
+        return false;
     };
     let norm = w[0].abs().max(w[1].abs());
     if !(norm > 0.0 && norm.is_finite()) {

@@ -190,6 +190,26 @@ fn apply_general<S: Num>(fa: &TriBezier<S>, fb: &TriBezier<S>, x: [f64; 5], c: [
     ell.mul(fa).add(&m.mul(fb))
 }
 
+/// The left singular vector of the smallest singular value of the 2×2
+/// matrix `j` (row-major): the combination of the rows that is closest to
+/// vanishing. `None` when it is not finite or zero.
+pub(crate) fn smallest_singular_left(j: [f64; 4]) -> Option<[f64; 2]> {
+    // J Jᵀ = [[p, q], [q, r]]; eigenvector of its smallest eigenvalue.
+    let (p, q, r) = (
+        j[0] * j[0] + j[1] * j[1],
+        j[0] * j[2] + j[1] * j[3],
+        j[2] * j[2] + j[3] * j[3],
+    );
+    let lam = 0.5 * (p + r) - (0.25 * (p - r) * (p - r) + q * q).sqrt();
+    let (v1, v2) = ([q, lam - p], [lam - r, q]);
+    let v = if v1[0].abs() + v1[1].abs() >= v2[0].abs() + v2[1].abs() {
+        v1
+    } else {
+        v2
+    };
+    (v.iter().all(|x| x.is_finite()) && v != [0.0, 0.0]).then_some(v)
+}
+
 /// Gaussian elimination with partial pivoting; `None` when a pivot is tiny
 /// relative to its row (numerically singular).
 // Row operations read one row while writing another: index loops are clearer.

@@ -58,6 +58,7 @@
 mod fatline;
 
 use super::krawczyk::{IBox, System, Verdict};
+use super::method::smallest_singular_left;
 use super::{
     merge_roots, overlaps, undecided_clusters, Box2, Cluster, ClusterReason, Found, Leftover, Root, Solution, Stats,
 };
@@ -1104,34 +1105,6 @@ pub(crate) fn eval_box(p: &[Iv], m: usize, n: usize, s: [f64; 2], t: [f64; 2]) -
     col[0]
 }
 
-/// Spans from equations that are combinations of `f` and `g` (every root of
-/// the system is a root of each): the rows of `Y·F` with `Y ≈ J(centre)⁻¹`,
-/// which makes the system nearly the identity so the hulls are tight, and
-/// `h = a f + b g` with `(a, b)` the left singular vector of `J` for its
-/// smallest singular value, which is nearly constant where `f = 0` and
-/// `g = 0` run (nearly) parallel — there it proves no root at once, where
-/// axis-aligned hulls of `f` and `g` would need boxes as thin as the gap.
-/// `None` when some combination proves there is no root.
-/// The left singular vector of the smallest singular value of the 2×2
-/// matrix `j` (row-major): the combination of the rows that is closest to
-/// vanishing. `None` when it is not finite or zero.
-fn smallest_singular_left(j: [f64; 4]) -> Option<[f64; 2]> {
-    // J Jᵀ = [[p, q], [q, r]]; eigenvector of its smallest eigenvalue.
-    let (p, q, r) = (
-        j[0] * j[0] + j[1] * j[1],
-        j[0] * j[2] + j[1] * j[3],
-        j[2] * j[2] + j[3] * j[3],
-    );
-    let lam = 0.5 * (p + r) - (0.25 * (p - r) * (p - r) + q * q).sqrt();
-    let (v1, v2) = ([q, lam - p], [lam - r, q]);
-    let v = if v1[0].abs() + v1[1].abs() >= v2[0].abs() + v2[1].abs() {
-        v1
-    } else {
-        v2
-    };
-    (v.iter().all(|x| x.is_finite()) && v != [0.0, 0.0]).then_some(v)
-}
-
 /// The combination of `f` and `g` closest to vanishing (by the Jacobian at
 /// the box's centre, in domain coordinates: `w` are the box's relative
 /// widths) has every coefficient possibly zero: the sign that would separate
@@ -1158,6 +1131,14 @@ fn sign_lost(c: &[Iv], sh: Shape, w: [f64; 2]) -> bool {
     })
 }
 
+/// Spans from equations that are combinations of `f` and `g` (every root of
+/// the system is a root of each): the rows of `Y·F` with `Y ≈ J(centre)⁻¹`,
+/// which makes the system nearly the identity so the hulls are tight, and
+/// `h = a f + b g` with `(a, b)` the left singular vector of `J` for its
+/// smallest singular value, which is nearly constant where `f = 0` and
+/// `g = 0` run (nearly) parallel — there it proves no root at once, where
+/// axis-aligned hulls of `f` and `g` would need boxes as thin as the gap.
+/// `None` when some combination proves there is no root.
 fn preconditioned_spans(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
     let (f, g) = (&c[..sh.len], &c[sh.len..2 * sh.len]);
     let [a, b] = jacobian_row(f, sh);
