@@ -504,17 +504,18 @@ fn run(f: &[Interval], g: &[Interval], solve: impl FnOnce() -> Result<Solution>)
     }
 }
 
-/// The two planes through the ray, in interval arithmetic.
-struct Planes {
-    o: [Interval; 3],
-    n: [[Interval; 3]; 2],
+/// The two planes through the ray, in interval arithmetic (also used by the
+/// B-spline knot-line merging).
+pub(crate) struct Planes {
+    pub(crate) o: [Interval; 3],
+    pub(crate) n: [[Interval; 3]; 2],
     /// `d̃ = 2^s d` (enclosed) and `2^s`.
-    d: [Interval; 3],
-    scale: Interval,
+    pub(crate) d: [Interval; 3],
+    pub(crate) scale: Interval,
 }
 
 impl Planes {
-    fn of(ray: &Ray) -> Self {
+    pub(crate) fn of(ray: &Ray) -> Self {
         let d = ray.dir;
         let big = d.abs().max_element();
         // A power of two, clamped so that it stays finite.
@@ -542,7 +543,7 @@ impl Planes {
     }
 
     /// `t = (S − o)·d / |d|² = 2^s (S − o)·d̃ / |d̃|²`.
-    fn t_of(&self, s: [Interval; 3]) -> Interval {
+    pub(crate) fn t_of(&self, s: [Interval; 3]) -> Interval {
         let num = (0..3).fold(point(0.0), |acc, c| acc + (s[c] - self.o[c]) * self.d[c]);
         let den = (0..3).fold(point(0.0), |acc, c| acc + self.d[c].sqr());
         self.scale * num / den

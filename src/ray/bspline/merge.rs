@@ -47,7 +47,7 @@
 
 use super::{BezierPiece, BsplineSurface};
 use crate::poly::{Direction, TensorBezier};
-use crate::ray::{Hit, HitBox, Ray};
+use crate::ray::{Hit, HitBox, Planes, Ray};
 use crate::scalar::{interval, point};
 use inari::Interval;
 use std::collections::BTreeMap;
@@ -105,7 +105,7 @@ pub(super) fn merge_knot_line_duplicates(surface: &BsplineSurface, ray: &Ray, fo
                 .fold(Interval::EMPTY, |a, b| a.convex_hull(b))
         };
         let x0 = [hull(|h| h.bx.u), hull(|h| h.bx.v)];
-        let planes = planes.get_or_insert_with(|| RayPlanes::of(ray));
+        let planes = planes.get_or_insert_with(|| Planes::of(ray));
         match certify_piecewise(surface, planes, x0) {
             Some(k) => out.extend(merged_hit(surface, planes, k)),
             None => out.extend(group),
@@ -116,7 +116,7 @@ pub(super) fn merge_knot_line_duplicates(surface: &BsplineSurface, ray: &Ray, fo
 
 /// The merged hit of a proven box `k`: `t` enclosed over `k` on every piece
 /// meeting it; `None` if `t` is provably negative.
-fn merged_hit(surface: &BsplineSurface, planes: &RayPlanes, k: IBox) -> Option<Hit> {
+fn merged_hit(surface: &BsplineSurface, planes: &Planes, k: IBox) -> Option<Hit> {
     let t = meeting(surface, k)
         .map(|piece| {
             let h: [Interval; 4] = std::array::from_fn(|c| piece.hom[c].eval(k[0], k[1]));
@@ -168,56 +168,6 @@ fn spans_meeting(breaks: &[f64], x: Interval) -> std::ops::Range<usize> {
     inner.partition_point(|&b| b < x.inf())..inner.partition_point(|&b| b <= x.sup()) + 1
 }
 
-/// The two planes through the ray, as in [`crate::ray::intersect`] (repeated
-/// here: that reduction is private to the Bézier path of `ray`).
-struct RayPlanes {
-    o: [Interval; 3],
-    n: [[Interval; 3]; 2],
-    d: [Interval; 3],
-    scale: Interval,
-}
-
-impl RayPlanes {
-    fn of(ray: &Ray) -> Self {
-        let d = ray.dir();
-        let e = d.abs().max_element().log2().floor().clamp(-1000.0, 1000.0) as i32;
-        let scale = point(2f64.powi(-e));
-        let dt = [point(d.x) * scale, point(d.y) * scale, point(d.z) * scale];
-        let a = d.abs();
-        let axis = if a.x <= a.y && a.x <= a.z {
-            0
-        } else if a.y <= a.z {
-            1
-        } else {
-            2
-        };
-        let mut e_a = [point(0.0); 3];
-        e_a[axis] = point(1.0);
-        let n1 = cross(e_a, dt);
-        let n2 = cross(dt, n1);
-        Self {
-            o: ray.origin().to_array().map(point),
-            n: [n1, n2],
-            d: dt,
-            scale,
-        }
-    }
-
-    fn t_of(&self, s: [Interval; 3]) -> Interval {
-        let num = (0..3).fold(point(0.0), |acc, c| acc + (s[c] - self.o[c]) * self.d[c]);
-        let den = (0..3).fold(point(0.0), |acc, c| acc + self.d[c].sqr());
-        self.scale * num / den
-    }
-}
-
-fn cross(a: [Interval; 3], b: [Interval; 3]) -> [Interval; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
 /// One piece's reduced system `F_k = (n₁·(X − W o), n₂·(X − W o))` on its
 /// rectangle in knot parameters, with its Jacobian.
 struct PieceSystem {
@@ -226,7 +176,7 @@ struct PieceSystem {
 }
 
 impl PieceSystem {
-    fn of(piece: &BezierPiece, planes: &RayPlanes) -> Option<Self> {
+    fn of(piece: &BezierPiece, planes: &Planes) -> Option<Self> {
         let (m, n) = piece.hom[3].degree();
         let (du, dv) = piece.hom[3].domain();
         let cols: [&[Interval]; 4] = std::array::from_fn(|c| piece.hom[c].coeffs());
@@ -263,7 +213,7 @@ enum Verdict {
 /// (over all of `X`), `Y ≈ (mid hull J_k)⁻¹` — the midpoint of the hull, not
 /// one piece's Jacobian, as the pieces' Jacobians may differ by a large
 /// factor across a knot line (spans of different lengths).
-fn krawczyk_step(surface: &BsplineSurface, planes: &RayPlanes, x: IBox) -> Verdict {
+fn krawczyk_step(surface: &BsplineSurface, planes: &Planes, x: IBox) -> Verdict {
     let mid = [x[0].mid(), x[1].mid()];
     if !(mid[0].is_finite() && mid[1].is_finite()) {
         return Verdict::Undecided(x);
@@ -321,7 +271,7 @@ fn krawczyk_step(surface: &BsplineSurface, planes: &RayPlanes, x: IBox) -> Verdi
 /// Proves that `G` has exactly one zero in a box containing `x0` and returns
 /// a box holding it (epsilon-inflation as in the solver's certification:
 /// every box tried contains `x0`), or `None`.
-fn certify_piecewise(surface: &BsplineSurface, planes: &RayPlanes, x0: IBox) -> Option<IBox> {
+fn certify_piecewise(surface: &BsplineSurface, planes: &Planes, x0: IBox) -> Option<IBox> {
     let mut x = x0.map(|c| inflate(c, 0.1));
     for _ in 0..10 {
         match krawczyk_step(surface, planes, x) {
