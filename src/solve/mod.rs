@@ -145,7 +145,7 @@ pub struct Root {
     /// Always `true` for entries of [`Solution::roots`] (kept for the JSON schema).
     pub certified: bool,
     /// The box touches the domain's boundary: the root is on it, or within
-    /// the box's width of it on either side.
+    /// the box's width of it (inside it, for exact input: see [`Solution`]).
     pub on_boundary: bool,
     /// Diameters of the tri-boxes holding this root, by level (index 0 is the
     /// whole domain), along the deepest path that reached it.
@@ -237,6 +237,12 @@ pub struct Stats {
 /// * Each `roots[i].bx` contains exactly one root of the system (in the plane —
 ///   a box may reach slightly outside the domain; see `on_boundary`), and it
 ///   is a simple root. Distinct entries are distinct roots.
+/// * For exact input ([`solve`]) that root also lies in the closed domain:
+///   a root whose box touches the boundary is settled in exact arithmetic
+///   ([`settle`]) — kept if in the domain, dropped if outside, else reported
+///   as a [`ClusterReason::BoundaryUndecided`] cluster. (For interval input,
+///   [`solve_triangle`], [`solve_square`], an `on_boundary` root may lie
+///   within its box's width outside the domain.)
 /// * Clusters promise nothing about their content.
 ///
 /// These hold for every system whose coefficients lie in the input
