@@ -5,6 +5,7 @@
 //! All BB types are generic over [`Scalar`](crate::scalar::Scalar), so the same
 //! code runs in `f64`, in rigorous intervals and in exact rationals.
 
+pub mod dyadic;
 pub mod l2;
 pub mod monomial;
 pub mod parse;

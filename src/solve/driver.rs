@@ -11,6 +11,7 @@ use super::fatcurve::ClipBounds;
 use super::method::{clip_bounds, Method};
 use super::num::Num;
 use super::tribox::TriBox;
+use crate::poly::dyadic::subdivide_dyadic;
 use crate::poly::TriBezier;
 use crate::scalar::Sign;
 use num_rational::BigRational;
@@ -340,13 +341,11 @@ fn restrict_pair<S: Num>(
 ) -> (TriBezier<S>, TriBezier<S>) {
     match exact {
         Some([fe, ge]) if use_exact => {
-            let q = |x: f64| BigRational::from_float(x).expect("vertices are finite");
-            let verts = tb.verts.map(|[s, t]| {
-                let (s, t) = (q(s), q(t));
-                let w = BigRational::from_integer(1.into()) - &s - &t;
-                [s, t, w]
-            });
-            let enclose = |p: &TriBezier<BigRational>| p.subdivide(&verts).map(S::from_rational);
+            // Integer arithmetic over common denominators (no gcds).
+            let enclose = |p: &TriBezier<BigRational>| {
+                let c = subdivide_dyadic(p, &tb.verts).expect("tri-box vertices are finite");
+                TriBezier::new(p.degree(), c.iter().map(S::from_rational).collect()).expect("same degree")
+            };
             (enclose(fe), enclose(ge))
         }
         _ => (restrict(f, tb), restrict(g, tb)),
