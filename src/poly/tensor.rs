@@ -59,7 +59,12 @@ impl<S: Scalar> TensorBezier<S> {
             UniBezier::new(vec![S::zero()], d.clone())?;
         }
         if let Some(pos) = coeffs.iter().position(|c| !c.is_finite()) {
-            return Err(Error::NonFinite(format!("coefficient {pos} is {:?}", coeffs[pos])));
+            let c = &coeffs[pos];
+            return Err(Error::NonFinite(format!(
+                "coefficient {pos} is not finite (it lies in [{:e}, {:e}]; an input or an intermediate value overflowed)",
+                c.lower(),
+                c.upper()
+            )));
         }
         Ok(Self {
             m,

@@ -78,7 +78,12 @@ impl<S: Scalar> TriBezier<S> {
             )));
         }
         if let Some(pos) = coeffs.iter().position(|c| !c.is_finite()) {
-            return Err(Error::NonFinite(format!("coefficient {pos} is {:?}", coeffs[pos])));
+            let c = &coeffs[pos];
+            return Err(Error::NonFinite(format!(
+                "coefficient {pos} is not finite (it lies in [{:e}, {:e}]; an input or an intermediate value overflowed)",
+                c.lower(),
+                c.upper()
+            )));
         }
         Ok(Self { degree, coeffs })
     }

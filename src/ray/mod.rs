@@ -350,7 +350,7 @@ pub fn intersect_with(patch: &Patch, ray: &Ray, opts: &RayOptions) -> Result<Ray
 fn intersect_rect(p: &TensorPatch, patch: &Patch, ray: &Ray, opts: &RayOptions) -> Result<RayOutcome> {
     let (m, n) = p.degree();
     let d = ray.dir;
-    let e = d.abs().max_element().log2().floor().clamp(-1000.0, 1000.0) as i32;
+    let e = d.abs().max_element().log2().floor().clamp(-1022.0, 1023.0) as i32;
     let scale = 2f64.powi(-e);
     let dt = d.to_array().map(|x| Iv::point(x).scale(scale));
     let a = d.abs();
@@ -519,7 +519,7 @@ impl Planes {
         let d = ray.dir;
         let big = d.abs().max_element();
         // A power of two, clamped so that it stays finite.
-        let e = big.log2().floor().clamp(-1000.0, 1000.0) as i32;
+        let e = big.log2().floor().clamp(-1022.0, 1023.0) as i32;
         let scale = point(2f64.powi(-e));
         let dt = [point(d.x) * scale, point(d.y) * scale, point(d.z) * scale];
         let a = d.abs();
