@@ -56,6 +56,7 @@
 //! piece makes it [`Degeneracy::Unresolved`] with every hit found (all pieces),
 //! `complete` only if every piece finished within its budget.
 
+mod exact;
 pub mod merge;
 
 use super::patch::{Patch, TensorPatch, MAX_DEGREE};
@@ -599,6 +600,12 @@ pub fn intersect_bspline(surface: &BsplineSurface, ray: &Ray, opts: &RayOptions)
                 h.hits
             }
         };
+        // A root the piece could not place on its side of an edge (its net
+        // carries knot-insertion error) is settled on the exact net.
+        let hits: Vec<Hit> = hits
+            .into_iter()
+            .filter_map(|h| settle_on_edge(surface, piece, ray, h))
+            .collect();
         let done = opts.query == Query::Any && hits.iter().any(|h| h.certified && !h.t_straddles_zero);
         found.extend(hits.into_iter().map(|h| (to_knot_hit(piece, h), k)));
         if done {
@@ -613,6 +620,52 @@ pub fn intersect_bspline(surface: &BsplineSurface, ray: &Ray, opts: &RayOptions)
         super::select(&mut hits, opts.query);
         RayOutcome::Hits(RayHits { complete: true, hits })
     })
+}
+
+/// A piece's hit, settled in exact arithmetic if it is [`Hit::on_edge`]:
+/// certified if its root is on the piece at `t ≥ 0`, `None` if it is off it
+/// or behind the origin, unchanged if undecided.
+///
+/// A settled hit's box is cut to the piece (past its edge the surface is
+/// another piece, which may hold a hit of its own within the box). A root
+/// exactly on an interior knot line is a root of both neighbouring pieces;
+/// it is kept by the piece below the line only.
+fn settle_on_edge(surface: &BsplineSurface, piece: &BezierPiece, ray: &Ray, h: Hit) -> Option<Hit> {
+    use crate::solve::settle::{Edge, Settled, Shape};
+    use crate::solve::Box2;
+    if !h.on_edge {
+        return Some(h);
+    }
+    let (p, q) = surface.degree;
+    let Some(sys) = exact::exact_piece_net(surface, piece)
+        .and_then(|net| super::settle::system_of_net(Shape::Tensor(p, q), &net, ray))
+    else {
+        return Some(h);
+    };
+    let bx = Box2 { u: h.bx.u, v: h.bx.v };
+    match sys.settle(bx) {
+        Settled::Inside => {
+            let on = sys.root_edges(bx);
+            let below_line = (on.contains(&Edge::U0) && piece.u[0] > surface.breaks_u[0])
+                || (on.contains(&Edge::V0) && piece.v[0] > surface.breaks_v[0]);
+            if below_line {
+                return None;
+            }
+            let clamp = |x: [f64; 2]| [x[0].max(0.0), x[1].min(1.0)];
+            Some(Hit {
+                certified: true,
+                on_edge: false,
+                bx: HitBox {
+                    u: clamp(h.bx.u),
+                    v: clamp(h.bx.v),
+                    t: [h.bx.t[0].max(0.0), h.bx.t[1]],
+                },
+                ..h
+            })
+        }
+        Settled::Outside => None,
+        Settled::Undecided => Some(h),
+    }
 }
 
 /// `false` only if the ray provably misses, for `t ≥ 0`, the box `[lo, hi]`

@@ -41,6 +41,24 @@ fn exact_system(patch: &Patch, ray: &Ray) -> Option<ExactSystem> {
         _ => return None,
     };
     let q = |x: f64| Q::from_float(x);
+    let hom = points
+        .iter()
+        .enumerate()
+        .map(|(idx, p)| {
+            let w = match weights {
+                Some(w) => q(w[idx])?,
+                None => Q::one(),
+            };
+            Some([&w * q(p.x)?, &w * q(p.y)?, &w * q(p.z)?, w])
+        })
+        .collect::<Option<Vec<_>>>()?;
+    system_of_net(shape, &hom, ray)
+}
+
+/// The exact system of a homogeneous net `(w x, w y, w z, w)` (in `shape`'s
+/// storage order) and the ray (module docs).
+pub(super) fn system_of_net(shape: Shape, hom: &[[Q; 4]], ray: &Ray) -> Option<ExactSystem> {
+    let q = |x: f64| Q::from_float(x);
     let vec = |p: DVec3| -> Option<[Q; 3]> { Some([q(p.x)?, q(p.y)?, q(p.z)?]) };
     let (o, d) = (vec(ray.origin())?, vec(ray.dir())?);
     let a = ray.dir().abs();
@@ -62,18 +80,15 @@ fn exact_system(patch: &Patch, ray: &Ray) -> Option<ExactSystem> {
         ]
     };
     let normals = [normal((c + 1) % 3), normal((c + 2) % 3), d.clone()];
-    let mut rows: [Vec<Q>; 3] = [Vec::new(), Vec::new(), Vec::new()];
-    for (idx, &p) in points.iter().enumerate() {
-        let p = vec(p)?;
-        let w = match weights {
-            Some(w) => q(w[idx])?,
-            None => Q::one(),
-        };
-        for (k, n) in normals.iter().enumerate() {
-            let dot = (0..3).fold(Q::zero(), |acc, c| acc + &n[c] * (&p[c] - &o[c]));
-            rows[k].push(&w * dot);
-        }
-    }
-    let [f, g, h] = rows;
+    // n·(wP − w o) for each row.
+    let rows: Vec<Vec<Q>> = normals
+        .iter()
+        .map(|n| {
+            hom.iter()
+                .map(|h| (0..3).fold(Q::zero(), |acc, c| acc + &n[c] * (&h[c] - &h[3] * &o[c])))
+                .collect()
+        })
+        .collect();
+    let [f, g, h]: [Vec<Q>; 3] = rows.try_into().ok()?;
     ExactSystem::new(shape, f, g, Some(h)).ok()
 }

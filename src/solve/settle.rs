@@ -53,13 +53,18 @@ pub enum Settled {
 /// 24 take 1e-16 below the smallest float either way.
 const REFINE_STEPS: usize = 24;
 
+/// An edge of the domain.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Edge {
+pub enum Edge {
+    /// `u = 0`.
     U0,
+    /// `u = 1` (square).
     U1,
+    /// `v = 0`.
     V0,
+    /// `v = 1` (square).
     V1,
-    /// `u + v = 1` of a triangle.
+    /// `u + v = 1` (triangle).
     Hypotenuse,
 }
 
@@ -164,9 +169,23 @@ impl ExactSystem {
         }
     }
 
+    /// The edges of the domain on which the root certified in `bx` is
+    /// proven to lie (exactly; among the edges the box crosses).
+    pub fn root_edges(&self, bx: Box2) -> Vec<Edge> {
+        let q = |x: f64| Q::from_float(x);
+        let (Some(u0), Some(u1), Some(v0), Some(v1)) = (q(bx.u[0]), q(bx.u[1]), q(bx.v[0]), q(bx.v[1])) else {
+            return Vec::new();
+        };
+        self.edges_with_root(&[RI::new(u0, u1), RI::new(v0, v1)])
+    }
+
     /// The root in `x` (unique) lies on an edge the box crosses (the gcd
     /// test of the module docs).
     fn on_crossed_edge(&self, x: &[RI; 2]) -> bool {
+        !self.edges_with_root(x).is_empty()
+    }
+
+    fn edges_with_root(&self, x: &[RI; 2]) -> Vec<Edge> {
         let (zero, one) = (Q::zero(), Q::one());
         let clip = |lo: &Q, hi: &Q| (lo.clone().max(zero.clone()), hi.clone().min(one.clone()));
         let [u, v] = x;
@@ -195,18 +214,22 @@ impl ExactSystem {
                 }
             }
         }
-        edges.into_iter().any(|(edge, (lo, hi))| {
-            if lo > hi {
-                return false;
-            }
-            let [f, g] = [0, 1].map(|k| bernstein_to_power(&self.edge(&self.f[k], edge)));
-            let h = gcd(f, g);
-            if h.len() < 2 {
-                return false;
-            }
-            let (a, b) = (horner(&h, &lo), horner(&h, &hi));
-            !(a.is_positive() && b.is_positive() || a.is_negative() && b.is_negative())
-        })
+        edges
+            .into_iter()
+            .filter(|(edge, (lo, hi))| {
+                if lo > hi {
+                    return false;
+                }
+                let [f, g] = [0, 1].map(|k| bernstein_to_power(&self.edge(&self.f[k], *edge)));
+                let h = gcd(f, g);
+                if h.len() < 2 {
+                    return false;
+                }
+                let (a, b) = (horner(&h, lo), horner(&h, hi));
+                !(a.is_positive() && b.is_positive() || a.is_negative() && b.is_negative())
+            })
+            .map(|(edge, _)| edge)
+            .collect()
     }
 
     /// The Bernstein coefficients of `c` restricted to `edge`, in its
