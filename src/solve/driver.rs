@@ -269,15 +269,22 @@ fn lost_to_rounding<S: Num>(f: &TriBezier<S>, g: &TriBezier<S>) -> bool {
 /// may vanish: `2⁻³⁰` (exact).
 pub const EDGE_STRIP: f64 = 1.0 / (1u64 << 30) as f64;
 
+/// Edge coefficients at most this fraction of the largest coefficient count
+/// as vanishing ([`vanishing_edges`]): `2⁻³⁶ ≈ 1.5e-11`.
+pub const VANISHING: f64 = 1.0 / (1u64 << 36) as f64;
+
 /// Which of the edges `u = 0` (coefficients `i = 0`) and `v = 0` (`j = 0`) of
-/// the root triangle carry only coefficients that may be zero, in both `f`
-/// and `g`: then both equations may vanish identically along that edge, a
-/// curve of roots (e.g. a ray through a patch's collapsed edge).
+/// the root triangle carry only coefficients that may be zero or are below
+/// [`VANISHING`] of the polynomial's largest, in both `f` and `g`: then both
+/// equations (nearly) vanish along that edge, a curve of roots or of near
+/// roots (a ray through, or within rounding of, a patch's collapsed edge),
+/// which no subdivision resolves quickly.
 pub fn vanishing_edges<S: Num>(f: &TriBezier<S>, g: &TriBezier<S>) -> [bool; 2] {
-    let may_be_zero = |c: &S| matches!(c.sign_class(), Sign::Zero | Sign::Straddles);
     let edge = |p: &TriBezier<S>, along_v: bool| {
         let n = p.degree();
-        (0..=n).all(|k| may_be_zero(if along_v { p.coeff(0, k) } else { p.coeff(k, 0) }))
+        let scale = p.coeffs().iter().map(|c| c.mag()).fold(0.0, f64::max);
+        let tiny = |c: &S| matches!(c.sign_class(), Sign::Zero | Sign::Straddles) || c.mag() <= VANISHING * scale;
+        (0..=n).all(|k| tiny(if along_v { p.coeff(0, k) } else { p.coeff(k, 0) }))
     };
     [edge(f, true) && edge(g, true), edge(f, false) && edge(g, false)]
 }

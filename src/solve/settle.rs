@@ -32,7 +32,7 @@ use crate::error::{Error, Result};
 use crate::poly::{tri_index, tri_len};
 use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::{One, Signed, ToPrimitive, Zero};
+use num_traits::{One, Signed, Zero};
 
 type Q = BigRational;
 
@@ -49,9 +49,10 @@ pub enum Settled {
 }
 
 /// Contraction steps of [`ExactSystem::refine`]: each roughly squares the
-/// box width (or, on a nearly linear system, multiplies it by ~1e-16), so
-/// 24 take 1e-16 below the smallest float either way.
-const REFINE_STEPS: usize = 24;
+/// box width, so a few decide any root a float's distance from an edge; the
+/// limit only stops the hopeless cases (a root exactly on an edge that the
+/// gcd test could not see).
+const REFINE_STEPS: usize = 12;
 
 /// An edge of the domain.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -299,7 +300,7 @@ impl ExactSystem {
         let pt = [RI::point(mid[0].clone()), RI::point(mid[1].clone())];
         let fm = [0, 1].map(|k| eval(self.shape, &self.f[k], &pt).lo);
         let jm: [[Q; 2]; 2] = [0, 1].map(|k| [0, 1].map(|d| eval_deriv(self.shape, &self.df[k][d], d, &pt).lo));
-        let y = inverse_f64(&jm)?;
+        let y = inverse(&jm, bits)?;
         let jx: [[RI; 2]; 2] = [0, 1].map(|k| [0, 1].map(|d| eval_deriv(self.shape, &self.df[k][d], d, x)));
         let dx = [x[0].sub_point(&mid[0]), x[1].sub_point(&mid[1])];
         let mut out: [RI; 2] = [RI::point(Q::zero()), RI::point(Q::zero())];
@@ -319,26 +320,35 @@ impl ExactSystem {
     }
 }
 
-/// Bits after the binary point that keep rounding far below `width`.
+/// Bits after the binary point that keep rounding far below `width²`.
 fn precision_bits(width: &Q) -> Option<u64> {
     if !width.is_positive() {
         return Some(64);
     }
-    // log2(width) ≈ bits(numer) − bits(denom).
+    // log2(width) ≈ bits(numer) − bits(denom). Rounding to about the square
+    // of the width keeps it from limiting the (quadratic) contraction.
     let e = width.numer().bits() as i64 - width.denom().bits() as i64;
-    let bits = (40 - e).max(64);
+    let bits = (64 - 2 * e).max(64);
     (bits < 1 << 20).then_some(bits as u64)
 }
 
-/// `Y ≈ J⁻¹` in `f64`, converted exactly (any `Y` keeps Krawczyk rigorous).
-fn inverse_f64(j: &[[Q; 2]; 2]) -> Option<[[Q; 2]; 2]> {
-    let a = j
-        .each_ref()
-        .map(|r| r.each_ref().map(|x| x.to_f64().unwrap_or(f64::NAN)));
-    let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
-    let inv = [[a[1][1] / det, -a[0][1] / det], [-a[1][0] / det, a[0][0] / det]];
-    let q = |x: f64| Q::from_float(x);
-    Some([[q(inv[0][0])?, q(inv[0][1])?], [q(inv[1][0])?, q(inv[1][1])?]])
+/// `Y ≈ J⁻¹`: the exact inverse of the midpoint Jacobian rounded to
+/// multiples of `2^-bits` relative to its size (any `Y` keeps Krawczyk
+/// rigorous; a sharp one makes `I − Y J(X)` of the order of the box, so the
+/// contraction is quadratic, and on a linear system it is one step).
+fn inverse(j: &[[Q; 2]; 2], bits: u64) -> Option<[[Q; 2]; 2]> {
+    let det = &j[0][0] * &j[1][1] - &j[0][1] * &j[1][0];
+    if det.is_zero() {
+        return None;
+    }
+    let inv = [[&j[1][1] / &det, -&j[0][1] / &det], [-&j[1][0] / &det, &j[0][0] / &det]];
+    // Round relative to the largest entry, so that the denominators stay
+    // bounded whatever the scale.
+    let big = inv.iter().flatten().map(|x| x.abs()).max().expect("four entries");
+    let e = big.numer().bits() as i64 - big.denom().bits() as i64;
+    let shift = (bits as i64 - e).clamp(0, 1 << 20) as u64;
+    let s = Q::from_integer(BigInt::one() << shift);
+    Some(inv.map(|r| r.map(|x| (x * &s).round() / &s)))
 }
 
 /// A closed interval with exact rational endpoints.
@@ -515,6 +525,31 @@ fn horner(p: &[Q], x: &Q) -> Q {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `f = v + 2^-1074`, `g = u − ½` on the unit square (bilinear): the
+    /// root lies 2^-1074 below the edge `v = 0`; `v − 2^-1074` puts it above,
+    /// `v` on it.
+    #[test]
+    fn settles_roots_a_subnormal_away_from_an_edge() {
+        let tiny = Q::from_float(f64::from_bits(1)).unwrap();
+        let bilinear = |c: [Q; 4]| c.to_vec();
+        let half = Q::new(1.into(), 2.into());
+        let g = bilinear([-half.clone(), -half.clone(), half.clone(), half.clone()]);
+        let bx = Box2 {
+            u: [0.5 - 1e-15, 0.5 + 1e-15],
+            v: [-1e-28, 1e-28],
+        };
+        for (shift, want) in [
+            (tiny.clone(), Settled::Outside),
+            (-tiny.clone(), Settled::Inside),
+            (Q::zero(), Settled::Inside),
+        ] {
+            // v + shift at the corners (0,0), (0,1), (1,0), (1,1).
+            let f = bilinear([shift.clone(), &shift + Q::one(), shift.clone(), &shift + Q::one()]);
+            let sys = ExactSystem::new(Shape::Tensor(1, 1), f, g.clone(), None).unwrap();
+            assert_eq!(sys.settle(bx), want, "shift {shift}");
+        }
+    }
 
     #[test]
     fn bernstein_to_power_matches_the_definition() {

@@ -57,6 +57,7 @@
 
 mod fatline;
 
+use super::driver::VANISHING;
 use super::krawczyk::{IBox, System, Verdict};
 use super::method::smallest_singular_left;
 use super::{
@@ -745,8 +746,9 @@ impl Runner {
     }
 
     /// Cuts a strip of relative width [`EDGE_STRIP`] off every edge of the
-    /// domain along which both equations may vanish identically (all their
-    /// coefficients on that edge contain 0) and keeps it as an undecided
+    /// domain along which both equations may vanish identically or nearly
+    /// (all their coefficients on that edge contain 0 or are below
+    /// [`VANISHING`] of their largest) and keeps it as an undecided
     /// region ([`ClusterReason::VanishingEdge`]).
     ///
     /// Why: if `f(0, t) ≡ g(0, t) ≡ 0` the edge is a curve of roots, and
@@ -761,7 +763,10 @@ impl Runner {
             for high in [false, true] {
                 let vanishes = (0..2).all(|p| {
                     let c = &node.c[p * sh.len..(p + 1) * sh.len];
-                    edge_indices(sh, d, high).all(|k| c[k].lo <= 0.0 && c[k].hi >= 0.0)
+                    let mag = |x: &Iv| x.lo.abs().max(x.hi.abs());
+                    let scale = c.iter().map(mag).fold(0.0, f64::max);
+                    edge_indices(sh, d, high)
+                        .all(|k| (c[k].lo <= 0.0 && c[k].hi >= 0.0) || mag(&c[k]) <= VANISHING * scale)
                 });
                 if !vanishes {
                     continue;
