@@ -731,8 +731,8 @@ fn cli_batch_queries_and_routes() {
 /// and corners, and from origins on, just above and just below the surface.
 /// The exact rule is simple here: a hit iff `(x, y)` is in the closed domain
 /// and `z ≥ 0`. A certified hit must be real; a real hit must be reported
-/// (certified, since the exact settling decides all of these but the
-/// subnormal offsets, which may stay undecided, never certified wrongly).
+/// (certified: the exact settling decides all of these, subnormal offsets
+/// included).
 #[test]
 fn flat_patches_at_the_rounding_floor_are_settled_exactly() {
     let square: Patch = TensorPatch::new(
@@ -776,8 +776,7 @@ fn flat_patches_at_the_rounding_floor_are_settled_exactly() {
                     );
                     if real {
                         assert!(!h.hits.is_empty(), "{name} ({x}, {y}, {z}): missed");
-                        let subnormal = [x, y, z].iter().any(|c| *c != 0.0 && c.abs() < f64::MIN_POSITIVE);
-                        assert!(subnormal || certified == 1, "{name} ({x}, {y}, {z}): not settled {h:?}");
+                        assert!(certified == 1, "{name} ({x}, {y}, {z}): not settled {h:?}");
                     }
                 }
             }
