@@ -90,7 +90,7 @@ enum Command {
         #[arg(long, default_value_t = 1e-12, allow_negative_numbers = true)]
         eps: f64,
         /// Budget: tri-boxes per triangle.
-        #[arg(long, default_value_t = 200_000)]
+        #[arg(long, default_value_t = 50_000)]
         max_boxes: usize,
         /// Print JSON instead of text.
         #[arg(long)]

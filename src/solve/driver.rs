@@ -120,6 +120,10 @@ fn noisy<S: Num>(p: &TriBezier<S>) -> bool {
     width > 1e-4 * size
 }
 
+/// After this many undecided probes in a row, only every 16th eligible
+/// tri-box is probed.
+pub const FUTILE_PROBES: usize = 64;
+
 /// The default [`Limits::max_exact`].
 pub const MAX_EXACT_BOXES: usize = 64;
 
@@ -164,6 +168,8 @@ pub struct Run<S> {
     pub nodes: Vec<Node>,
     /// Counters.
     pub counters: Counters,
+    /// Probes in a row that proved nothing (see [`FUTILE_PROBES`]).
+    pub futile_probes: usize,
     /// Strips `[[u_lo, u_hi], [v_lo, v_hi]]` cut off the root triangle along
     /// edges where both equations may vanish ([`vanishing_edges`]); they are
     /// undecided regions, never explored.
@@ -192,6 +198,7 @@ pub fn run<S: Num>(
         leftovers: Vec::new(),
         nodes: Vec::new(),
         counters: Counters::default(),
+        futile_probes: 0,
         strips: Vec::new(),
     };
     if uniform_sign(f).is_some() || uniform_sign(g).is_some() {
@@ -450,9 +457,19 @@ fn step<S: Num>(
         } else {
             new_diam < limits.probe_below
         };
-    let verdict = if probe_here {
+    // After a long run of futile probes (all undecided: curves running
+    // within a hair of each other over a long stretch, where every tri-box
+    // stalls), probe only every 16th tri-box; a probe only saves work.
+    let throttled = out.futile_probes >= FUTILE_PROBES && out.counters.boxes % 16 != 0;
+    let verdict = if probe_here && !throttled {
         out.counters.probes += 1;
-        probe(&tb)
+        let v = probe(&tb);
+        out.futile_probes = if v == Probe::Undecided {
+            out.futile_probes + 1
+        } else {
+            0
+        };
+        v
     } else {
         Probe::Undecided
     };

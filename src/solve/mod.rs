@@ -86,7 +86,7 @@ impl Default for SolveOptions {
         Self {
             method: Method::Hc,
             eps: 1e-12,
-            max_boxes: 200_000,
+            max_boxes: 50_000,
             max_depth: 400,
             probe: true,
             split: SplitRule::Halving,

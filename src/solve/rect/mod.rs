@@ -120,7 +120,7 @@ impl Default for RectOptions {
     fn default() -> Self {
         Self {
             eps: 1e-12,
-            max_boxes: 200_000,
+            max_boxes: 50_000,
             query: Query::All,
             key_min: None,
             clip: RectClip::default(),
