@@ -234,42 +234,66 @@ pub fn run<S: Num>(
     out
 }
 
-/// Some combination `w_f f + w_g g` (`w` the left singular vector of the
-/// smallest singular value of the Jacobian at the tri-box's centre, or
-/// `f`, `g` themselves) has every coefficient possibly zero: the sign that
-/// would separate the curves is lost to rounding on the whole tri-box.
-/// Subdivision cannot restore it (a child's coefficients are convex
-/// combinations of these, so they contain 0 too); only exact coefficients
-/// could. So such a stalled, undecided tri-box is a leaf whatever its size.
-///
-/// Near a multiple root the two curves run within rounding of each other
-/// over a neighbourhood of about the `k`-th root of the rounding (`k` the
-/// multiplicity: ~1e-8 for a double root, ~1e-5 for a triple one), where
-/// `f` and `g` separately keep their signs but the combination that tells
-/// the curves apart does not; splitting that neighbourhood down to
-/// [`SINGULAR_FLOOR`] made tens of thousands of leaves.
-fn lost_to_rounding<S: Num>(f: &TriBezier<S>, g: &TriBezier<S>) -> bool {
+/// What the combination `w_f f + w_g g` that is closest to vanishing says
+/// about a stalled tri-box (`w` the left singular vector of the smallest
+/// singular value of the Jacobian at its centre; or `f`, `g` themselves).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Combination {
+    /// Its coefficients share a strict sign: every root of the system is a
+    /// root of it, so the tri-box holds none. Near a multiple root `f` and
+    /// `g` keep mixed signs over a wide neighbourhood while their difference
+    /// is already one-signed; without this test Bézier clipping split that
+    /// neighbourhood into tens of thousands of tri-boxes.
+    NoRoot,
+    /// Every coefficient (of `f`, `g` or the combination) may be zero: the
+    /// sign that would separate the curves is lost to rounding on the whole
+    /// tri-box, and subdivision cannot restore it (a child's coefficients are
+    /// convex combinations of these, so they contain 0 too); only exact
+    /// coefficients could. Such a tri-box is a leaf whatever its size: near
+    /// a root of multiplicity `k` the region is about the `k`-th root of the
+    /// rounding wide (~1e-8 for a double root, ~1e-5 for a triple one).
+    Lost,
+    /// Neither.
+    Open,
+}
+
+fn separating_combination<S: Num>(f: &TriBezier<S>, g: &TriBezier<S>) -> Combination {
     if !S::KERNEL.is_rigorous() || f.degree() != g.degree() {
-        return false;
+        return Combination::Open;
     }
     fn lost<S: Num>(mut c: impl Iterator<Item = S>) -> bool {
         c.all(|c| matches!(c.sign_class(), Sign::Zero | Sign::Straddles))
     }
     if lost(f.coeffs().iter().copied()) || lost(g.coeffs().iter().copied()) {
-        return true;
+        return Combination::Lost;
     }
     let centre = [1.0 / 3.0; 3];
     let (_, a, _) = f.map(|x| x.to_f64()).jet2(&centre);
     let (_, b, _) = g.map(|x| x.to_f64()).jet2(&centre);
     let Some(w) = super::method::smallest_singular_left([a[0], a[1], b[0], b[1]]) else {
-        return false;
+        return Combination::Open;
     };
     let norm = w[0].abs().max(w[1].abs());
     if !(norm > 0.0 && norm.is_finite()) {
-        return false;
+        return Combination::Open;
     }
     let (wf, wg) = (S::pt(w[0] / norm), S::pt(w[1] / norm));
-    lost(f.coeffs().iter().zip(g.coeffs()).map(|(x, y)| wf * *x + wg * *y))
+    let h = TriBezier::new(
+        f.degree(),
+        f.coeffs()
+            .iter()
+            .zip(g.coeffs())
+            .map(|(x, y)| wf * *x + wg * *y)
+            .collect(),
+    )
+    .expect("same degree");
+    if uniform_sign(&h).is_some() {
+        Combination::NoRoot
+    } else if lost(h.coeffs().iter().copied()) {
+        Combination::Lost
+    } else {
+        Combination::Open
+    }
 }
 
 /// The relative width of the strip cut along an edge where both equations
@@ -486,9 +510,15 @@ fn step<S: Num>(
             return;
         }
         Probe::Unique => true,
-        Probe::Undecided => {
-            !progressed && probe_here && (new_diam < SINGULAR_FLOOR || lost_to_rounding(&next.fa, &next.fb))
-        }
+        Probe::Undecided if !progressed && probe_here => match separating_combination(&next.fa, &next.fb) {
+            Combination::NoRoot => {
+                out.counters.sign_exclusions += 1;
+                return;
+            }
+            Combination::Lost => true,
+            Combination::Open => new_diam < SINGULAR_FLOOR,
+        },
+        Probe::Undecided => false,
     };
     if stop_here || progressed {
         let leaf = at_level(out, next, level, new_diam);
