@@ -696,7 +696,7 @@ fn results_section(c: &Ctx, s: &mut String) {
                 "RK4 tracing (step {}) + Newton, ≤ {} iterations",
                 p.t10_step, p.t10_max_iter
             ),
-            "hybrid clipping + Krawczyk (`ray::intersect`, default options)".into(),
+            "Bézier clipping on boxes + Krawczyk (`ray::intersect`, default options: the tensor route `solve::rect`)".into(),
         ),
         ("machine", p.machine.clone(), machine()),
     ];
@@ -740,8 +740,8 @@ fn results_section(c: &Ctx, s: &mut String) {
     let _ = write!(
         s,
         "**Target** (the issue): all {} rays in under {TARGET_SECONDS} s on 2 cores. Measured: {verdict} \
-         ({us:.1} µs/ray wall on {threads} threads{scaled}). The ray solver is being made faster; rerunning this \
-         example regenerates every number on this page.\n\n",
+         ({us:.1} µs/ray wall on {threads} threads{scaled}). Rerunning this example regenerates every number on \
+         this page.\n\n",
         thousands(p.t10_points)
     );
 }
