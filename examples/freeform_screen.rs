@@ -696,7 +696,8 @@ fn results_section(c: &Ctx, s: &mut String) {
                 "RK4 tracing (step {}) + Newton, ≤ {} iterations",
                 p.t10_step, p.t10_max_iter
             ),
-            "Bézier clipping on boxes + Krawczyk (`ray::intersect`, default options: the tensor route `solve::rect`)".into(),
+            "Bézier clipping on boxes + Krawczyk (`ray::intersect`, default options: the tensor route `solve::rect`)"
+                .into(),
         ),
         ("machine", p.machine.clone(), machine()),
     ];

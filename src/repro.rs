@@ -198,13 +198,16 @@ pub fn tables(split: SplitRule) -> Result<(Vec<RecursionCell>, Vec<DiameterCell>
 }
 
 /// The measured convergence order from a diameter sequence: the median of
-/// `log(d_{i+1}/d_i) / log(d_i/d_{i−1})` over steps where the diameters are
-/// still above `1e-15` (past that, rounding dominates).
+/// `log(d_{i+1}/d_i) / log(d_i/d_{i−1})` over steps that start below `0.2`
+/// and end above `1e-12`. A step that ends below that measures the rounding
+/// floor (certified tri-boxes stop at 1e-15..1e-13 around a root; the
+/// paper's float ones at ~1e-16), not the method: §3's cubic bound
+/// `d_{i+1} ≤ C d_i³` is about exact arithmetic.
 pub fn convergence_order(diams: &[f64]) -> Option<f64> {
     let d: Vec<f64> = diams.iter().copied().take_while(|&x| x > 1e-15).collect();
     let mut orders: Vec<f64> = d
         .windows(3)
-        .filter(|w| w[1] < w[0] && w[2] < w[1] && w[1] < 0.2)
+        .filter(|w| w[1] < w[0] && w[2] < w[1] && w[1] < 0.2 && w[2] > 1e-12)
         .map(|w| (w[2] / w[1]).ln() / (w[1] / w[0]).ln())
         .collect();
     if orders.is_empty() {
