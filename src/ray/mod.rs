@@ -240,8 +240,8 @@ pub fn intersect(patch: &Patch, ray: &Ray, opts: &SolveOptions) -> Result<RayOut
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum TensorRoute {
     /// Native Bézier clipping on boxes ([`solve_rect`]), with the query's
-    /// pruning inside the solve (`t < 0` regions dropped, nearest-first
-    /// order); a ray that exhausts its budget is retried through
+    /// pruning inside the solve (boxes farther than a certified hit dropped,
+    /// the nearer child first); a ray that exhausts its budget is retried through
     /// [`TensorRoute::Triangles`]. The default: measured over 20 times
     /// faster (README).
     #[default]

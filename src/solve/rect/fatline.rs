@@ -206,8 +206,6 @@ mod tests {
             n,
             len: (m + 1) * (n + 1),
             polys: 2,
-            has_key: false,
-            has_den: false,
         }
     }
 

@@ -9,9 +9,12 @@
 //! 1. **check-sign**: if every `f_ij` (or every `g_ij`) is strictly positive,
 //!    or strictly negative, `B` holds no root (the Bernstein basis is a
 //!    positive partition of unity);
-//! 2. **objective**: with an objective `k = p/q` (`q > 0`) and a floor
-//!    `k_min`, `B` is dropped when every `p_ij/q_ij < k_min` (then
-//!    `k < k_min` on `B`: `k` is a convex combination of the ratios);
+//! 2. **objective** (with an objective `k = p/q`, `q > 0`, and [`Query::Nearest`]):
+//!    once a root is certified, `B` is dropped when `k` enclosed over `B`
+//!    (interval de Casteljau on the domain's coefficients of `p` and `q`)
+//!    lies above the certified root's upper bound; the whole domain is
+//!    dropped at once when every `p_ij/q_ij < k_min` (then `k < k_min`: `k`
+//!    is a convex combination of the ratios);
 //! 3. **Krawczyk** in local coordinates once `B` is small: `X = [0, 1]²`,
 //!    `F'(X)` enclosed by the hull of the derivative's Bernstein coefficients
 //!    `m(f_{i+1,j} − f_ij)`, `n(f_{i,j+1} − f_ij)`, `F(½, ½)` by interval de
@@ -69,8 +72,6 @@ use crate::scalar::interval;
 use crate::scalar::iv::Iv;
 use fatline::{fat_line_spans, FatLineClip};
 use inari::Interval;
-use std::cmp::Ordering;
-use std::collections::BinaryHeap;
 
 /// What the caller wants from the roots, ordered by an objective `k`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -78,9 +79,11 @@ pub enum Query {
     /// Every root.
     #[default]
     All,
-    /// The roots of smallest objective: boxes are explored in order of the
-    /// objective's lower bound and the search stops once the best certified
-    /// root's upper bound is below every remaining box's lower bound.
+    /// The roots of smallest objective: boxes are explored depth first, the
+    /// child with the smaller objective bound first, and once a root is
+    /// certified every box whose objective is provably above its upper bound
+    /// is dropped (bounds by interval evaluation over the box, computed only
+    /// then: the objective is not carried through the subdivision).
     Nearest,
     /// Any one certified root with `k ≥ k_min`: the search stops at the first.
     Any,
@@ -312,27 +315,13 @@ pub(crate) fn solve_rect_iv(p: RectProblem, opts: &RectOptions) -> Result<RectSo
     {
         return Err(Error::Degenerate("the objective's denominator must be positive".into()));
     }
-    // The objective is carried through the subdivision only when the query
-    // orders by it; for `All` it is checked once on the whole domain (and
-    // the caller drops roots whose objective is provably below `key_min`).
-    let carry = p.num.is_some() && opts.query != Query::All;
-    let shape = Shape {
-        m,
-        n,
-        len,
-        polys: 2 + usize::from(carry) + usize::from(carry && p.den.is_some()),
-        has_key: carry,
-        has_den: carry && p.den.is_some(),
-    };
+    // The objective is not carried through the subdivision: it is bounded
+    // over a box only where a query needs it (a certified root; a box that
+    // Nearest might prune), from the domain's coefficients.
+    let shape = Shape { m, n, len, polys: 2 };
     let mut buf = Vec::with_capacity(shape.polys * len);
     buf.extend_from_slice(&p.f);
     buf.extend_from_slice(&p.g);
-    if let (Some(num), true) = (&p.num, carry) {
-        buf.extend_from_slice(num);
-        if let Some(den) = &p.den {
-            buf.extend_from_slice(den);
-        }
-    }
     if let (Some(num), Some(k_min)) = (&p.num, opts.key_min) {
         // k = num/den with den > 0: k < k_min everywhere if every ratio is.
         let below = match &p.den {
@@ -370,7 +359,6 @@ pub(crate) fn solve_rect_iv(p: RectProblem, opts: &RectOptions) -> Result<RectSo
     let mut first = Node {
         c: buf,
         bx: domain,
-        key_lo: f64::NEG_INFINITY,
         id: run.push_trace(u32::MAX, domain.map(|[lo, hi]| [lo.lo, hi.hi])),
     };
     run.cut_vanishing_edges(&mut first);
@@ -384,17 +372,14 @@ struct Shape {
     n: usize,
     len: usize,
     polys: usize,
-    has_key: bool,
-    has_den: bool,
 }
 
 /// A box: the coefficients of every polynomial on it, its endpoints (each an
-/// enclosure), the objective's lower bound, its trace index.
+/// enclosure), its trace index.
 #[derive(Clone, Debug)]
 struct Node {
     c: Vec<Iv>,
     bx: [[Iv; 2]; 2],
-    key_lo: f64,
     id: u32,
 }
 
@@ -405,52 +390,6 @@ impl Node {
 
     fn ibox(&self) -> IBox {
         self.outer().map(|[lo, hi]| interval(lo, hi))
-    }
-}
-
-/// Min-heap order on the objective's lower bound (for [`Query::Nearest`]).
-struct ByKey(Node);
-
-impl PartialEq for ByKey {
-    fn eq(&self, other: &Self) -> bool {
-        self.0.key_lo.total_cmp(&other.0.key_lo) == Ordering::Equal
-    }
-}
-impl Eq for ByKey {}
-impl PartialOrd for ByKey {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for ByKey {
-    fn cmp(&self, other: &Self) -> Ordering {
-        other.0.key_lo.total_cmp(&self.0.key_lo)
-    }
-}
-
-enum Queue {
-    Stack(Vec<Node>),
-    Heap(BinaryHeap<ByKey>),
-}
-
-impl Queue {
-    fn push(&mut self, n: Node) {
-        match self {
-            Queue::Stack(s) => s.push(n),
-            Queue::Heap(h) => h.push(ByKey(n)),
-        }
-    }
-    fn pop(&mut self) -> Option<Node> {
-        match self {
-            Queue::Stack(s) => s.pop(),
-            Queue::Heap(h) => h.pop().map(|b| b.0),
-        }
-    }
-    fn drain(self) -> Vec<Node> {
-        match self {
-            Queue::Stack(s) => s,
-            Queue::Heap(h) => h.into_iter().map(|b| b.0).collect(),
-        }
     }
 }
 
@@ -503,30 +442,27 @@ impl Runner {
         [(o[0][1] - o[0][0]) / self.scale[0], (o[1][1] - o[1][0]) / self.scale[1]]
     }
 
-    /// The main loop; returns the boxes a budget left.
+    /// The main loop, depth first; returns the boxes a budget left.
     fn drive(&mut self, first: Node) -> Vec<Node> {
-        let mut queue = match self.opts.query {
-            Query::Nearest => Queue::Heap(BinaryHeap::new()),
-            _ => Queue::Stack(Vec::new()),
-        };
-        queue.push(first);
+        let mut queue = vec![first];
         while let Some(node) = queue.pop() {
-            if self.opts.query == Query::Nearest && node.key_lo > self.best {
-                break;
-            }
             if self.stopped_early {
                 break;
             }
             if self.stats.run.boxes >= self.opts.max_boxes {
-                let mut rest = queue.drain();
-                rest.push(node);
-                return rest;
+                queue.push(node);
+                return queue;
             }
             self.stats.run.boxes += 1;
             match self.step(node) {
                 Step::Done => {}
                 Step::Continue(n) => queue.push(n),
                 Step::Split(a, b) => {
+                    // Nearest: the child nearer in the objective first, so
+                    // that a near root is certified early and prunes the rest.
+                    let swap =
+                        self.opts.query == Query::Nearest && self.key_over(b.ibox()).0 < self.key_over(a.ibox()).0;
+                    let (a, b) = if swap { (b, a) } else { (a, b) };
                     queue.push(b);
                     queue.push(a);
                 }
@@ -543,16 +479,11 @@ impl Runner {
             self.stats.run.sign_exclusions += 1;
             return Step::Done;
         }
-        if sh.has_key {
-            let (lo, hi) = self.key_bounds(&node.c);
-            if self.opts.key_min.is_some_and(|k| hi < k) {
-                self.stats.run.sign_exclusions += 1;
-                return Step::Done;
-            }
-            node.key_lo = node.key_lo.max(lo);
-            if self.opts.query == Query::Nearest && node.key_lo > self.best {
-                return Step::Done;
-            }
+        // Nearest: once a root is certified, a box whose objective is
+        // provably above it cannot hold a nearer root.
+        if self.opts.query == Query::Nearest && self.best < f64::INFINITY && self.key_over(node.ibox()).0 > self.best {
+            self.stats.run.sign_exclusions += 1;
+            return Step::Done;
         }
         let w = self.rel_width(&node);
         if w[0].max(w[1]) <= KRAWCZYK_BELOW {
@@ -566,8 +497,7 @@ impl Runner {
                     });
                     let narrow = (0..2).all(|a| bx[a].wid() <= self.opts.eps * self.scale[a]);
                     if narrow || k[0].wid().max(k[1].wid()) <= REPORT_BELOW {
-                        let key = self.key_bounds(&node.c);
-                        self.add_root(bx, node.id, key);
+                        self.add_root(bx, node.id);
                         return Step::Done;
                     }
                     // The only root of the box lies in K ⊂ int box: go on
@@ -685,58 +615,50 @@ impl Runner {
         Step::Split(a, b)
     }
 
-    /// Bounds of the objective over a box from its coefficients' ratios.
-    fn key_bounds(&self, c: &[Iv]) -> (f64, f64) {
-        let sh = self.shape;
-        if !sh.has_key {
+    /// Bounds of the objective `num/den` over the box `x` (domain
+    /// coordinates), by interval de Casteljau on the domain's coefficients;
+    /// the whole line without an objective (or where the bound is not finite).
+    fn key_over(&self, x: IBox) -> (f64, f64) {
+        let p = &self.problem;
+        let Some(num) = &p.num else {
+            return (f64::NEG_INFINITY, f64::INFINITY);
+        };
+        // Local coordinates of the box, enclosed outward.
+        let local = |a: usize| {
+            let [lo, hi] = p.domain[a];
+            let w = hi.sub(lo);
+            let l = Iv::point(x[a].inf()).sub(lo).div(w);
+            let h = Iv::point(x[a].sup()).sub(lo).div(w);
+            [l.lo, h.hi]
+        };
+        let (s, t) = (local(0), local(1));
+        let k = eval_box(num, p.m, p.n, s, t);
+        let k = match &p.den {
+            Some(den) => k.div(eval_box(den, p.m, p.n, s, t)),
+            None => k,
+        };
+        if k.lo.is_nan() || k.hi.is_nan() {
             return (f64::NEG_INFINITY, f64::INFINITY);
         }
-        let num = &c[2 * sh.len..3 * sh.len];
-        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        if sh.has_den {
-            let den = &c[3 * sh.len..4 * sh.len];
-            for (p, q) in num.iter().zip(den) {
-                // q > 0: p/q is smallest at p.lo / (q.lo or q.hi).
-                let l = p.lo / if p.lo >= 0.0 { q.hi } else { q.lo };
-                let h = p.hi / if p.hi >= 0.0 { q.lo } else { q.hi };
-                if l.is_nan() || h.is_nan() {
-                    return (f64::NEG_INFINITY, f64::INFINITY);
-                }
-                lo = lo.min(l.next_down());
-                hi = hi.max(h.next_up());
-            }
-        } else {
-            for p in num {
-                if !p.is_finite() {
-                    return (f64::NEG_INFINITY, f64::INFINITY);
-                }
-                lo = lo.min(p.lo);
-                hi = hi.max(p.hi);
-            }
-        }
-        // NaN (impossible for finite positive denominators) proves nothing.
-        if lo.is_nan() || hi.is_nan() {
-            return (f64::NEG_INFINITY, f64::INFINITY);
-        }
-        (lo, hi)
+        (k.lo, k.hi)
     }
 
-    /// Records a certified root; `key` bounds the objective over a box that
-    /// holds it (for the queries).
-    fn add_root(&mut self, bx: IBox, id: u32, key: (f64, f64)) {
+    /// Records a certified root (and, for the queries, bounds the objective
+    /// over its box).
+    fn add_root(&mut self, bx: IBox, id: u32) {
         // Only a root proven to lie in the closed domain may end or prune a
         // query: one within rounding of an edge may be a root of the
         // polynomial's continuation past it (for a ray, a miss).
         let d = self.problem.domain;
         let inside = (0..2).all(|a| bx[a].inf() >= d[a][0].hi && bx[a].sup() <= d[a][1].lo);
-        // (Without an objective every root counts as above the floor.)
-        let above = !self.shape.has_key || self.opts.key_min.is_none_or(|m| key.0 >= m);
-        if inside && above {
-            if self.shape.has_key {
+        if inside && self.opts.query != Query::All {
+            // (Without an objective every root counts as above the floor.)
+            let key = self.key_over(bx);
+            if self.opts.key_min.is_none_or(|m| key.0 >= m) {
                 self.best = self.best.min(key.1);
-            }
-            if self.opts.query == Query::Any {
-                self.stopped_early = true;
+                if self.opts.query == Query::Any {
+                    self.stopped_early = true;
+                }
             }
         }
         self.found.push(Found {
@@ -797,7 +719,7 @@ impl Runner {
                 } else {
                     // The root may lie just outside this box (in a neighbour):
                     // no objective bound from this box's coefficients then.
-                    self.add_root(k, node.id, (f64::NEG_INFINITY, f64::INFINITY));
+                    self.add_root(k, node.id);
                 }
             }
             Verdict::NoRoot => self.stats.krawczyk_exclusions += 1,
