@@ -558,17 +558,7 @@ impl Runner {
             *span = ((span.0 - r).max(0.0), (span.1 + r).min(1.0));
         }
         keep_aspect(&mut spans, w);
-        let mut area = 1.0;
-        for (d, &(a, b)) in spans.iter().enumerate() {
-            if a > 0.0 || b < 1.0 {
-                clip(&mut node, sh, d, a, b);
-                area *= b - a;
-            }
-        }
-        if area < 1.0 {
-            self.stats.run.clips += 1;
-            node.id = self.push_trace(node.id, node.outer());
-        }
+        let area = self.clip_to(&mut node, &spans);
         if area <= 0.5 {
             return Step::Continue(node);
         }
@@ -579,18 +569,7 @@ impl Runner {
                 return Step::Done;
             }
             Some(spans) => {
-                let mut shrink = 1.0;
-                for (d, &(a, b)) in spans.iter().enumerate() {
-                    if a > 0.0 || b < 1.0 {
-                        clip(&mut node, sh, d, a, b);
-                        shrink *= b - a;
-                    }
-                }
-                if shrink < 1.0 {
-                    self.stats.run.clips += 1;
-                    node.id = self.push_trace(node.id, node.outer());
-                }
-                if area * shrink <= 0.5 {
+                if area * self.clip_to(&mut node, &spans) <= 0.5 {
                     return Step::Continue(node);
                 }
             }
@@ -641,6 +620,23 @@ impl Runner {
             return (f64::NEG_INFINITY, f64::INFINITY);
         }
         (k.lo, k.hi)
+    }
+
+    /// Clips `node` to `spans` (local coordinates; only where they cut) and
+    /// records the clip in the trace; returns the kept fraction of the area.
+    fn clip_to(&mut self, node: &mut Node, spans: &[(f64, f64); 2]) -> f64 {
+        let mut area = 1.0;
+        for (d, &(a, b)) in spans.iter().enumerate() {
+            if a > 0.0 || b < 1.0 {
+                clip(node, self.shape, d, a, b);
+                area *= b - a;
+            }
+        }
+        if area < 1.0 {
+            self.stats.run.clips += 1;
+            node.id = self.push_trace(node.id, node.outer());
+        }
+        area
     }
 
     /// Records a certified root (and, for the queries, bounds the objective
