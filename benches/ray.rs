@@ -4,8 +4,9 @@
 //!
 //! * `ray/rect-all`, `ray/rect-nearest`, `ray/rect-any`: the default
 //!   rectangle route with each query;
-//! * `ray/rect-fat-line-all`: the rectangle route with fat-line clipping
-//!   instead of Bézier hulls;
+//! * `ray/rect-fat-line-all`, `ray/rect-hybrid-all`: the rectangle route with
+//!   fat-line or hybrid (fat line + fat conic) clipping instead of Bézier
+//!   hulls;
 //! * `ray/triangles-all`: the same patch as two degree-6 triangles (hybrid
 //!   clipping), the route the rectangle one is measured against;
 //! * `ray/newton`: plain Newton–Raphson from the patch centre on the same
@@ -42,6 +43,7 @@ fn bench(c: &mut Criterion) {
         ("rect-nearest", TensorRoute::Rect, Query::Nearest),
         ("rect-any", TensorRoute::Rect, Query::Any),
         ("rect-fat-line-all", TensorRoute::RectFatLine, Query::All),
+        ("rect-hybrid-all", TensorRoute::RectHybrid, Query::All),
         ("triangles-all", TensorRoute::Triangles, Query::All),
     ];
     for (name, route, query) in cases {

@@ -296,6 +296,8 @@ proptest! {
         let rect = run(TensorRoute::Rect, Query::All);
         let tri = run(TensorRoute::Triangles, Query::All);
         let fat = run(TensorRoute::RectFatLine, Query::All);
+        let hybrid = run(TensorRoute::RectHybrid, Query::All);
+        check_hits(&patch, &ray, &hybrid);
         check_hits(&patch, &ray, &rect);
         check_hits(&patch, &ray, &tri);
         check_hits(&patch, &ray, &fat);
@@ -306,10 +308,12 @@ proptest! {
         for h in &cr {
             prop_assert!(ct.iter().filter(|x| overlap(h, x)).count() == 1, "{:?} not matched in {:?}", h, tri);
         }
-        let cf = cert(&fat);
-        prop_assert_eq!(cf.len(), cr.len(), "fat-line {:?}\nrect {:?}", fat, rect);
-        for h in &cf {
-            prop_assert!(cr.iter().filter(|x| overlap(h, x)).count() == 1, "{:?} not matched in {:?}", h, rect);
+        for other in [&fat, &hybrid] {
+            let co = cert(other);
+            prop_assert_eq!(co.len(), cr.len(), "variant {:?}\nrect {:?}", other, rect);
+            for h in &co {
+                prop_assert!(cr.iter().filter(|x| overlap(h, x)).count() == 1, "{:?} not matched in {:?}", h, rect);
+            }
         }
         let near = run(TensorRoute::Rect, Query::Nearest);
         match (cr.first(), near.iter().find(|h| h.certified)) {

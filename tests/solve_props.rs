@@ -1666,6 +1666,14 @@ fn fat_line_opts() -> SolveOptions {
     }
 }
 
+/// The rectangle route with hybrid clipping ([`SquareRoute::RectHybrid`]).
+fn hybrid_opts() -> SolveOptions {
+    SolveOptions {
+        square_route: SquareRoute::RectHybrid,
+        ..default_opts()
+    }
+}
+
 proptest! {
     #![proptest_config(cfg(32))]
 
@@ -1686,6 +1694,24 @@ proptest! {
     #[test]
     fn rect_fat_line_close_pairs((p, ab, mu, flip) in close_pair()) {
         close_pairs_property(Domain::Square, &p, ab, &mu, flip, &fat_line_opts())?;
+    }
+
+    /// 10: hybrid clipping on boxes, on the same three families.
+    #[test]
+    fn rect_hybrid_planted_lines(
+        (fl, gl) in line_system(point(Domain::Square), Domain::Square, Plan { axis: true, ..BROAD }),
+    ) {
+        planted_property(&fl, &gl, Domain::Square, &hybrid_opts())?;
+    }
+
+    #[test]
+    fn rect_hybrid_dense_reproven((f, g, p) in dense_system()) {
+        dense_property(&f, &g, p.as_ref(), Domain::Square, &hybrid_opts())?;
+    }
+
+    #[test]
+    fn rect_hybrid_close_pairs((p, ab, mu, flip) in close_pair()) {
+        close_pairs_property(Domain::Square, &p, ab, &mu, flip, &hybrid_opts())?;
     }
 }
 

@@ -60,6 +60,8 @@ pub enum RouteArg {
     Rect,
     /// Fat-line clipping on boxes.
     RectFatLine,
+    /// Hybrid clipping (fat line + fat conic) on boxes.
+    RectHybrid,
     /// Two triangles of degree m + n, hybrid clipping.
     Triangles,
 }
@@ -82,6 +84,7 @@ pub fn run(args: &RayArgs) -> Result<String> {
         route: match args.route {
             RouteArg::Rect => TensorRoute::Rect,
             RouteArg::RectFatLine => TensorRoute::RectFatLine,
+            RouteArg::RectHybrid => TensorRoute::RectHybrid,
             RouteArg::Triangles => TensorRoute::Triangles,
         },
         query: if args.nearest {

@@ -249,6 +249,9 @@ pub enum TensorRoute {
     /// As [`TensorRoute::Rect`], with fat-line clipping on boxes
     /// ([`RectClip::FatLine`]) instead of Bézier hulls.
     RectFatLine,
+    /// As [`TensorRoute::Rect`], with hybrid clipping on boxes (a fat line
+    /// and a fat conic, [`RectClip::Hybrid`]).
+    RectHybrid,
     /// The square as two triangles of degree `m + n`, solved by hybrid
     /// clipping ([`solve_square`]); queries filter the full hit list.
     Triangles,
@@ -286,7 +289,9 @@ impl Default for RayOptions {
 ///
 /// `complete` keeps its meaning for the hits the query asks for.
 pub fn intersect_with(patch: &Patch, ray: &Ray, opts: &RayOptions) -> Result<RayOutcome> {
-    if let (Patch::Tensor(p), TensorRoute::Rect | TensorRoute::RectFatLine) = (patch, opts.route) {
+    if let (Patch::Tensor(p), TensorRoute::Rect | TensorRoute::RectFatLine | TensorRoute::RectHybrid) =
+        (patch, opts.route)
+    {
         let out = intersect_rect(p, patch, ray, opts)?;
         if !matches!(out, RayOutcome::Degenerate(Degeneracy::Unresolved(ref h)) if !h.complete) {
             return Ok(out);
@@ -419,10 +424,10 @@ fn intersect_rect(p: &TensorPatch, patch: &Patch, ray: &Ray, opts: &RayOptions) 
         max_boxes: opts.solve.max_boxes,
         query: opts.query,
         key_min: Some(0.0),
-        clip: if opts.route == TensorRoute::RectFatLine {
-            RectClip::FatLine
-        } else {
-            RectClip::Bezier
+        clip: match opts.route {
+            TensorRoute::RectFatLine => RectClip::FatLine,
+            TensorRoute::RectHybrid => RectClip::Hybrid,
+            _ => RectClip::Bezier,
         },
     };
     let sol = match solve_rect_iv(problem, &ropts) {

@@ -79,6 +79,9 @@ pub enum SquareRoute {
     /// As [`SquareRoute::Rect`] with fat-line clipping on boxes
     /// ([`rect::RectClip::FatLine`]).
     RectFatLine,
+    /// As [`SquareRoute::Rect`] with hybrid clipping on boxes
+    /// ([`rect::RectClip::Hybrid`]).
+    RectHybrid,
 }
 
 impl Default for SolveOptions {
@@ -373,10 +376,10 @@ pub fn solve(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions
                 let ropts = rect::RectOptions {
                     eps: opts.eps,
                     max_boxes: opts.max_boxes,
-                    clip: if opts.square_route == SquareRoute::RectFatLine {
-                        rect::RectClip::FatLine
-                    } else {
-                        rect::RectClip::Bezier
+                    clip: match opts.square_route {
+                        SquareRoute::RectFatLine => rect::RectClip::FatLine,
+                        SquareRoute::RectHybrid => rect::RectClip::Hybrid,
+                        _ => rect::RectClip::Bezier,
                     },
                     ..rect::RectOptions::default()
                 };

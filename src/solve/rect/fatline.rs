@@ -48,7 +48,7 @@ pub(super) enum FatLineClip {
 
 /// A strip `|a + b σ + c τ| ≤ δ` (centred local coordinates).
 #[derive(Clone, Copy, Debug)]
-struct Strip {
+pub(super) struct Strip {
     a: Iv,
     b: Iv,
     c: Iv,
@@ -56,9 +56,20 @@ struct Strip {
 }
 
 impl Strip {
+    /// The strip in uncentred local coordinates `(s, t) ∈ [0, 1]²`:
+    /// `|a' + b s + c t| ≤ δ` with `a' = a − b/2 − c/2`, as `(a', b, c, δ)`.
+    pub(super) fn uncentred(&self) -> (Iv, Iv, Iv, f64) {
+        (
+            self.a.sub(self.b.scale(0.5)).sub(self.c.scale(0.5)),
+            self.b,
+            self.c,
+            self.delta,
+        )
+    }
+
     /// The least-squares plane through the control points and its rigorous
     /// distance bound (module docs). `None` for non-finite coefficients.
-    fn of(p: &[Iv], sh: Shape) -> Option<Self> {
+    pub(super) fn of(p: &[Iv], sh: Shape) -> Option<Self> {
         let (m, n) = (sh.m, sh.n);
         // Centred abscissae are symmetric about 0 on the grid, so the normal
         // equations decouple: a = mean, b = Σ x p / Σ x², c = Σ y p / Σ y².

@@ -59,6 +59,7 @@
 //! float outward), certification of leaves uses inari.
 
 mod fatline;
+mod hybrid;
 
 use super::driver::VANISHING;
 use super::krawczyk::{IBox, System, Verdict};
@@ -71,6 +72,7 @@ use crate::poly::TensorBezier;
 use crate::scalar::interval;
 use crate::scalar::iv::Iv;
 use fatline::{fat_line_spans, FatLineClip};
+use hybrid::hybrid_spans;
 use inari::Interval;
 
 /// What the caller wants from the roots, ordered by an objective `k`.
@@ -101,6 +103,12 @@ pub enum RectClip {
     /// parallelogram where both strips meet. Falls back to Bézier hulls
     /// where the strips are parallel within rounding.
     FatLine,
+    /// Hybrid clipping on boxes (see `src/solve/rect/hybrid.rs`): a fat line
+    /// for `f` and a fat conic for `g`, the box cut to the extremes of the
+    /// region where the strip meets the conic band (vertices and tangencies,
+    /// enclosed in interval arithmetic). Falls back to Bézier hulls where
+    /// an enclosure is not possible.
+    Hybrid,
 }
 
 /// Options of [`solve_rect`].
@@ -532,6 +540,7 @@ impl Runner {
         // Clip in both directions.
         let fat = match self.opts.clip {
             RectClip::FatLine => fat_line_spans(&node.c, sh),
+            RectClip::Hybrid => hybrid_spans(&node.c, sh),
             RectClip::Bezier => FatLineClip::Parallel,
         };
         let mut spans = match fat {
