@@ -35,7 +35,9 @@
 //!    no side narrower than 10⁻³ of the other. With [`RectClip::FatLine`]
 //!    the spans come instead from the parallelogram where two rigorous
 //!    strips around the equations' least-squares planes meet (linear
-//!    clipping on boxes; `fatline.rs`);
+//!    clipping on boxes; `fatline.rs`), with [`RectClip::Hybrid`] from the
+//!    extremes of the region where a strip around `f` meets a band around a
+//!    fitted conic for `g` (hybrid clipping on boxes; `hybrid.rs`);
 //! 5. a step that did not halve the box's area **splits** it across its
 //!    longer side at `63/128` (off the centre, so that a root at a "round"
 //!    parameter such as ½ is rarely on a split line).
