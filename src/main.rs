@@ -4,7 +4,7 @@ use clap::{Parser, Subcommand, ValueEnum};
 use num_rational::BigRational;
 use num_traits::One;
 use rootclip::poly::tri_indices;
-use rootclip::solve::{self, Method, Solution, SolveOptions};
+use rootclip::solve::{self, Method, Solution, SolveOptions, SquareRoute};
 use rootclip::{parse_polynomial, Error};
 use serde_json::{json, Value};
 use std::io::Write;
@@ -27,6 +27,29 @@ enum Domain {
     Triangle,
     /// The unit square [0, 1]^2; bidegree = (degree in u, degree in v).
     Square,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum SquareRouteArg {
+    /// Two triangles of degree m + n, solved with --method (default).
+    Triangles,
+    /// Bézier clipping on boxes.
+    Rect,
+    /// Fat-line clipping on boxes.
+    RectFatLine,
+    /// Hybrid clipping (fat line + fat conic) on boxes.
+    RectHybrid,
+}
+
+impl From<SquareRouteArg> for SquareRoute {
+    fn from(r: SquareRouteArg) -> Self {
+        match r {
+            SquareRouteArg::Triangles => SquareRoute::Triangles,
+            SquareRouteArg::Rect => SquareRoute::Rect,
+            SquareRouteArg::RectFatLine => SquareRoute::RectFatLine,
+            SquareRouteArg::RectHybrid => SquareRoute::RectHybrid,
+        }
+    }
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -89,9 +112,13 @@ enum Command {
         /// Refine tri-boxes until their diameter is below this.
         #[arg(long, default_value_t = 1e-12, allow_negative_numbers = true)]
         eps: f64,
-        /// Budget: tri-boxes per triangle.
+        /// Budget: tri-boxes per triangle (boxes, on the rectangle routes).
         #[arg(long, default_value_t = 50_000)]
         max_boxes: usize,
+        /// How the square is solved: as two triangles with --method (the
+        /// paper's conversion), or natively on boxes.
+        #[arg(long, value_enum, default_value = "triangles")]
+        square_route: SquareRouteArg,
         /// Print JSON instead of text.
         #[arg(long)]
         json: bool,
@@ -162,12 +189,14 @@ fn run(cli: Cli) -> Result<String, Error> {
             method,
             eps,
             max_boxes,
+            square_route,
             json,
         } => {
             let opts = SolveOptions {
                 method: method.into(),
                 eps,
                 max_boxes,
+                square_route: square_route.into(),
                 ..SolveOptions::default()
             };
             solve_cmd(&f, &g, domain, &opts, json)

@@ -25,9 +25,11 @@
 //! [`Iv`] arithmetic (the roots of each quadratic from its interval
 //! coefficients, the square root rounded outward); candidates that provably
 //! violate a constraint are dropped, and the spans are the hull of the rest.
-//! A quadratic whose leading coefficient may vanish without being exactly
-//! zero, or any non-finite enclosure, gives up the clip
-//! ([`FatLineClip::Parallel`]: the caller falls back to Bézier hulls).
+//! A quadratic whose leading coefficient may vanish is solved as a linear
+//! equation with the square term absorbed over `x ∈ [0, 1]` (the only roots
+//! that matter lie in the box); one with no usable linear term either, or
+//! any non-finite enclosure, gives up the clip ([`FatLineClip::Parallel`]:
+//! the caller falls back to Bézier hulls).
 //!
 //! # Convergence
 //! `δ_l = O(h²)` and `δ_q = O(h³)` on a box of size `h`, as for hybrid
@@ -159,28 +161,33 @@ impl Conic {
     }
 }
 
-/// The real roots of `c0 + c1 x + c2 x² = 0` for every member of the
-/// interval coefficients, enclosed; `Err(())` when the enclosure is not
-/// possible (a leading coefficient that may vanish without being zero, a
-/// non-finite value).
+/// The real roots in `[0, 1]` of `c0 + c1 x + c2 x² = 0`, for every member
+/// of the interval coefficients, enclosed (the enclosures may reach outside
+/// `[0, 1]`; the callers drop what lies outside the box); `Err(())` when no
+/// enclosure is possible (the equation may be degenerate, a value is not
+/// finite).
+///
+/// A leading coefficient that may vanish (interval arithmetic rarely gives
+/// an exact 0, even for a conic with no square term) is absorbed: for
+/// `x ∈ [0, 1]`, `c2 x² ∈ c2·[0, 1]`, so the roots there solve the linear
+/// `(c0 + c2·[0, 1]) + c1 x = 0`.
 fn quadratic_roots(c: [Iv; 3]) -> Result<Vec<Iv>, ()> {
     let [c0, c1, c2] = c;
     if !(c0.is_finite() && c1.is_finite() && c2.is_finite()) {
         return Err(());
     }
-    if c2.lo == 0.0 && c2.hi == 0.0 {
-        if c1.lo == 0.0 && c1.hi == 0.0 {
-            // Constant: no isolated root (a zero constant is a whole line,
-            // which the callers add themselves where it matters).
-            return Ok(Vec::new());
-        }
+    if !(c2.lo > 0.0 || c2.hi < 0.0) {
+        let c0 = c0.add(c2.mul(Iv::new(0.0, 1.0)));
         if !(c1.lo > 0.0 || c1.hi < 0.0) {
-            return Err(());
+            // No linear term either: roots only if the constant may vanish,
+            // and then anywhere.
+            return if c0.lo > 0.0 || c0.hi < 0.0 {
+                Ok(Vec::new())
+            } else {
+                Err(())
+            };
         }
         return Ok(vec![Iv::point(0.0).sub(c0).div(c1)]);
-    }
-    if !(c2.lo > 0.0 || c2.hi < 0.0) {
-        return Err(());
     }
     let disc = c1.mul(c1).sub(c2.mul(c0).scale(4.0));
     if disc.hi < 0.0 {
@@ -393,7 +400,14 @@ mod tests {
         assert!(quadratic_roots([Iv::point(1.0), Iv::point(0.0), Iv::point(1.0)])
             .unwrap()
             .is_empty());
-        assert!(quadratic_roots([Iv::point(1.0), Iv::point(1.0), Iv::new(-1e-20, 1e-20)]).is_err());
+        // A leading term that may vanish is absorbed over x ∈ [0, 1]:
+        // 1e-20 x² + x − 0.5 has its root near 0.5.
+        let r = quadratic_roots([Iv::point(-0.5), Iv::point(1.0), Iv::new(-1e-20, 1e-20)]).unwrap();
+        assert!(
+            r.len() == 1 && r[0].lo <= 0.5 && 0.5 <= r[0].hi && r[0].wid() < 1e-14,
+            "{r:?}"
+        );
+        assert!(quadratic_roots([Iv::new(-1.0, 1.0), Iv::new(-1e-20, 1e-20), Iv::new(-1e-20, 1e-20)]).is_err());
     }
 
     #[test]
