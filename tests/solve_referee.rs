@@ -252,6 +252,30 @@ fn close_roots_are_covered_by_every_method() {
     }
 }
 
+/// Two simple roots 1e-8 and 1e-9 apart (`u = 1/3 ± d` on a slanted
+/// line): rounding leaves one of them in an undecided leaf, and Krawczyk in
+/// exact arithmetic (bisecting where needed) certifies both. Each exact root
+/// must lie in exactly one certified box.
+#[test]
+fn close_simple_roots_are_certified_in_exact_arithmetic() {
+    let p = |s: &str| parse_polynomial(s).unwrap();
+    for k in [8, 9] {
+        let f = format!("(u-1/3)^2 - 1/10^{}", 2 * k);
+        let g = "v - 1/4 + (u-1/3)/7";
+        let sol = solve(&p(&f), &p(g), Domain::Triangle, &SolveOptions::default()).unwrap();
+        assert!(
+            sol.complete && sol.clusters.is_empty() && sol.roots.len() == 2,
+            "{f}: {sol:?}"
+        );
+        for sign in [1, -1] {
+            let d = BigRational::new(1.into(), num_bigint::BigInt::from(10).pow(k as u32));
+            let u = q("1/3") + d.clone() * BigRational::from_integer(sign.into());
+            let v = q("1/4") - (&u - q("1/3")) / BigRational::from_integer(7.into());
+            assert_eq!(covering(&sol, &u, &v), 1, "{f}: root u = 1/3 {sign:+}e-{k}: {sol:?}");
+        }
+    }
+}
+
 #[test]
 fn square_diagonal_root_is_reported_once() {
     let p = |s: &str| parse_polynomial(s).unwrap();

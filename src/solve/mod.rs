@@ -122,6 +122,11 @@ pub struct Box2 {
 }
 
 impl Box2 {
+    /// The closed boxes share a point.
+    fn overlaps(&self, o: &Box2) -> bool {
+        self.u[0] <= o.u[1] && o.u[0] <= self.u[1] && self.v[0] <= o.v[1] && o.v[0] <= self.v[1]
+    }
+
     fn of(x: IBox) -> Self {
         Self {
             u: [x[0].inf(), x[0].sup()],
@@ -356,7 +361,7 @@ pub fn solve(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions
                 frame: Frame::Identity,
                 exact: Some([ef, eg]),
             };
-            Ok(settle_boundary(
+            Ok(finish_exact(
                 solve_pieces(vec![piece], &global, Domain::Triangle, opts),
                 &sys,
             ))
@@ -385,7 +390,7 @@ pub fn solve(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions
                 };
                 let sol = rect::solve_rect(&ef.map(enclose), &eg.map(enclose), None, &ropts)?.solution;
                 if sol.complete {
-                    return Ok(settle_boundary(sol, &sys));
+                    return Ok(finish_exact(sol, &sys));
                 }
                 // Out of budget (e.g. two curves running nearly parallel
                 // along a diagonal, which axis-aligned boxes separate only
@@ -393,11 +398,114 @@ pub fn solve(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions
                 // curves and exact restarts handle those.
             }
             let exact = Some((ef.to_triangles(), eg.to_triangles()));
-            Ok(settle_boundary(
+            Ok(finish_exact(
                 square_pieces(&ef.map(enclose), &eg.map(enclose), exact, opts)?,
                 &sys,
             ))
         }
+    }
+}
+
+/// Undecided regions at most this wide are retried by exact Krawczyk.
+const EXACT_CERTIFY_BELOW: f64 = 1e-6;
+/// At most this many exact Krawczyk tests per solve (each region that does
+/// not settle at once is bisected, at most three times).
+const EXACT_CERTIFY_MAX: usize = 24;
+
+/// Retries small undecided regions with Krawczyk in exact arithmetic
+/// ([`settle::ExactSystem::certify`]), bisecting a region that does not
+/// settle at once (two roots 1e-9 apart share one): if every piece is
+/// proven to hold one simple root or none, the region is replaced by those
+/// roots (a root whose box overlaps another root's stays undecided: it could
+/// be the same root); otherwise it stays. Then every certified root on the
+/// boundary is settled ([`settle_boundary`]).
+fn finish_exact(mut sol: Solution, sys: &settle::ExactSystem) -> Solution {
+    let mut kept = Vec::with_capacity(sol.clusters.len());
+    let mut budget = EXACT_CERTIFY_MAX;
+    for c in std::mem::take(&mut sol.clusters) {
+        let small = c.bx.u[1] - c.bx.u[0] <= EXACT_CERTIFY_BELOW && c.bx.v[1] - c.bx.v[0] <= EXACT_CERTIFY_BELOW;
+        // A (nearly) singular Jacobian at the centre: a multiple root, or
+        // roots closer than these tests separate; not worth the exact cost.
+        let j = sys.jacobian_f64(0.5 * (c.bx.u[0] + c.bx.u[1]), 0.5 * (c.bx.v[0] + c.bx.v[1]));
+        let det = j[0] * j[3] - j[1] * j[2];
+        let scale = (j[0] * j[0] + j[1] * j[1]).sqrt() * (j[2] * j[2] + j[3] * j[3]).sqrt();
+        // (NaN counts as singular.)
+        let near_singular = det.abs().partial_cmp(&(1e-11 * scale)) != Some(std::cmp::Ordering::Greater);
+        if c.reason != ClusterReason::KrawczykUndecided || !small || near_singular {
+            kept.push(c);
+            continue;
+        }
+        let mut found = Vec::new();
+        if !certify_region(sys, c.bx, 3, &mut budget, &mut found, &mut sol.stats) {
+            kept.push(c);
+            continue;
+        }
+        let mut rejected = false;
+        for bx in found {
+            if sol.roots.iter().any(|r| r.bx.overlaps(&bx)) {
+                rejected = true;
+                continue;
+            }
+            let place = locate([interval(bx.u[0], bx.u[1]), interval(bx.v[0], bx.v[1])], sys.domain());
+            if place == Place::Outside {
+                sol.stats.outside_domain += 1;
+                continue;
+            }
+            sol.roots.push(Root {
+                u: 0.5 * (bx.u[0] + bx.u[1]),
+                v: 0.5 * (bx.v[0] + bx.v[1]),
+                bx,
+                certified: true,
+                on_boundary: place == Place::Boundary,
+                diameters: c.diameters.clone(),
+            });
+        }
+        if rejected {
+            kept.push(c);
+        }
+    }
+    sol.clusters = kept;
+    sol.roots.sort_by(|a, b| a.u.total_cmp(&b.u).then(a.v.total_cmp(&b.v)));
+    settle_boundary(sol, sys)
+}
+
+/// Certifies the region `bx` in exact arithmetic, bisecting it up to
+/// `depth` times: `true` if every piece holds one simple root (its box is
+/// pushed to `found`) or none.
+fn certify_region(
+    sys: &settle::ExactSystem,
+    bx: Box2,
+    depth: usize,
+    budget: &mut usize,
+    found: &mut Vec<Box2>,
+    stats: &mut Stats,
+) -> bool {
+    if *budget == 0 {
+        return false;
+    }
+    *budget -= 1;
+    stats.krawczyk_calls += 1;
+    match sys.certify(bx) {
+        settle::Certificate::Unique(k) => {
+            found.push(k);
+            true
+        }
+        settle::Certificate::NoRoot => {
+            stats.krawczyk_exclusions += 1;
+            true
+        }
+        settle::Certificate::Undecided if depth > 0 => {
+            let (a, b) = if bx.u[1] - bx.u[0] >= bx.v[1] - bx.v[0] {
+                let m = 0.5 * (bx.u[0] + bx.u[1]);
+                (Box2 { u: [bx.u[0], m], ..bx }, Box2 { u: [m, bx.u[1]], ..bx })
+            } else {
+                let m = 0.5 * (bx.v[0] + bx.v[1]);
+                (Box2 { v: [bx.v[0], m], ..bx }, Box2 { v: [m, bx.v[1]], ..bx })
+            };
+            certify_region(sys, a, depth - 1, budget, found, stats)
+                && certify_region(sys, b, depth - 1, budget, found, stats)
+        }
+        settle::Certificate::Undecided => false,
     }
 }
 

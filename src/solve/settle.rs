@@ -32,7 +32,7 @@ use crate::error::{Error, Result};
 use crate::poly::{tri_index, tri_len};
 use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::{One, Signed, Zero};
+use num_traits::{One, Signed, ToPrimitive, Zero};
 
 type Q = BigRational;
 
@@ -53,6 +53,8 @@ pub enum Settled {
 /// limit only stops the hopeless cases (a root exactly on an edge that the
 /// gcd test could not see).
 const REFINE_STEPS: usize = 12;
+/// Steps of [`ExactSystem::certify`].
+const CERTIFY_STEPS: usize = 4;
 
 /// An edge of the domain.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -67,6 +69,17 @@ pub enum Edge {
     V1,
     /// `u + v = 1` (triangle).
     Hypotenuse,
+}
+
+/// What exact Krawczyk proves about a box ([`ExactSystem::certify`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Certificate {
+    /// Exactly one root, simple, and it lies in this box.
+    Unique(Box2),
+    /// No root.
+    NoRoot,
+    /// Nothing proven.
+    Undecided,
 }
 
 /// The domain and basis of an [`ExactSystem`].
@@ -116,6 +129,24 @@ impl ExactSystem {
             h,
             df,
         })
+    }
+
+    /// The Jacobian `[f_u, f_v, g_u, g_v]` at `(u, v)`, in `f64` (an
+    /// estimate, for deciding whether an exact test is worth its cost).
+    pub fn jacobian_f64(&self, u: f64, v: f64) -> [f64; 4] {
+        let d = |k: usize, dir: usize| {
+            let c: Vec<f64> = self.df[k][dir].iter().map(|x| x.to_f64().unwrap_or(f64::NAN)).collect();
+            eval_f64(self.shape, &c, dir, u, v)
+        };
+        [d(0, 0), d(0, 1), d(1, 0), d(1, 1)]
+    }
+
+    /// The domain: the unit triangle or the unit square.
+    pub fn domain(&self) -> super::Domain {
+        match self.shape {
+            Shape::Triangle(_) => super::Domain::Triangle,
+            Shape::Tensor(..) => super::Domain::Square,
+        }
     }
 
     /// Settles the root certified in `bx` (exactly one simple root of the
@@ -292,6 +323,57 @@ impl ExactSystem {
         Settled::Undecided
     }
 
+    /// Krawczyk in exact arithmetic on the closed box `bx` widened by a
+    /// tenth of its size on each side (a root on its edge should not defeat
+    /// the test): [`Certificate::Unique`] with a box holding the only root of
+    /// the widened box, a simple one, once `K(X) ⊂ int X` for a contraction
+    /// `X` of it (every root of the widened box stays in each `X`, so the
+    /// uniqueness extends to it); [`Certificate::NoRoot`] when `K(X) ∩ X` is
+    /// empty. Used on the small undecided regions that rounding left: with
+    /// exact coefficients the noise that defeated the interval Krawczyk test
+    /// is gone (two roots 1e-8 apart, say).
+    pub fn certify(&self, bx: Box2) -> Certificate {
+        let q = |x: f64| Q::from_float(x);
+        let widen = |b: [f64; 2]| {
+            let r = (b[1] - b[0]) / 10.0;
+            Some((q(b[0] - r)?, q(b[1] + r)?))
+        };
+        let (Some((u0, u1)), Some((v0, v1))) = (widen(bx.u), widen(bx.v)) else {
+            return Certificate::Undecided;
+        };
+        let mut x = [RI::new(u0, u1), RI::new(v0, v1)];
+        // K(X) ⊂ int X comes within a few steps when it comes at all; a step
+        // that does not halve the box means it will not (and the rationals'
+        // sizes double with every step that does).
+        for _ in 0..CERTIFY_STEPS {
+            let Some(k) = self.krawczyk(&x) else {
+                return Certificate::Undecided;
+            };
+            let inside = (0..2).all(|d| k[d].lo > x[d].lo && k[d].hi < x[d].hi);
+            if inside {
+                let out = |r: &RI| {
+                    let (lo, hi) = (r.lo.to_f64().unwrap_or(f64::NAN), r.hi.to_f64().unwrap_or(f64::NAN));
+                    // Outward by an ulp: `to_f64` rounds to nearest.
+                    [lo.next_down(), hi.next_up()]
+                };
+                return Certificate::Unique(Box2 {
+                    u: out(&k[0]),
+                    v: out(&k[1]),
+                });
+            }
+            let (Some(a), Some(b)) = (k[0].meet(&x[0]), k[1].meet(&x[1])) else {
+                return Certificate::NoRoot;
+            };
+            let before = x[0].width().max(x[1].width());
+            let after = a.width().max(b.width());
+            if after * Q::from_integer(2.into()) > before {
+                return Certificate::Undecided;
+            }
+            x = [a, b];
+        }
+        Certificate::Undecided
+    }
+
     /// `K(X) = x̃ − Y F(x̃) + (I − Y J(X))(X − x̃)`, endpoints rounded outward.
     fn krawczyk(&self, x: &[RI; 2]) -> Option<[RI; 2]> {
         let width = x[0].width().max(x[1].width());
@@ -452,6 +534,59 @@ fn eval_deriv(shape: Shape, c: &[Q], d: usize, x: &[RI; 2]) -> RI {
         return RI::point(Q::zero());
     }
     eval(lower, c, x)
+}
+
+/// A derivative's value at `(u, v)` in `f64` (its shape is one degree lower
+/// in `d`), by de Casteljau.
+fn eval_f64(shape: Shape, c: &[f64], d: usize, u: f64, v: f64) -> f64 {
+    if c.is_empty() {
+        return 0.0;
+    }
+    match shape {
+        Shape::Tensor(m, n) => {
+            let (m, n) = if d == 0 {
+                (m.saturating_sub(1), n)
+            } else {
+                (m, n.saturating_sub(1))
+            };
+            let mut col: Vec<f64> = (0..=m)
+                .map(|i| {
+                    let mut row = c[i * (n + 1)..(i + 1) * (n + 1)].to_vec();
+                    for r in (1..=n).rev() {
+                        for j in 0..r {
+                            row[j] += v * (row[j + 1] - row[j]);
+                        }
+                    }
+                    row[0]
+                })
+                .collect();
+            for r in (1..=m).rev() {
+                for i in 0..r {
+                    col[i] += u * (col[i + 1] - col[i]);
+                }
+            }
+            col[0]
+        }
+        Shape::Triangle(n) => {
+            let n = n.saturating_sub(1);
+            let w = 1.0 - u - v;
+            let mut net = c.to_vec();
+            for m in (1..=n).rev() {
+                let mut next = Vec::with_capacity(m * (m + 1) / 2);
+                for j in 0..m {
+                    for i in 0..m - j {
+                        next.push(
+                            u * net[tri_index(m, i + 1, j)]
+                                + v * net[tri_index(m, i, j + 1)]
+                                + w * net[tri_index(m, i, j)],
+                        );
+                    }
+                }
+                net = next;
+            }
+            net[0]
+        }
+    }
 }
 
 /// An enclosure of the polynomial over the box `x`, by de Casteljau in
