@@ -19,8 +19,8 @@ mod figures;
 #[path = "hybrid_clipping_report/svg.rs"]
 mod svg;
 
-use rootclip::repro::{self, DiameterCell, Example, RecursionCell, LG_EPS};
-use rootclip::solve::{solve, Domain, Method, Solution, SplitRule};
+use rootclip::repro::{self, DiameterCell, Example, RecursionCell, Variant, LG_EPS};
+use rootclip::solve::{solve, Domain, Method, Solution};
 use std::error::Error;
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -35,16 +35,19 @@ fn main() -> Res<()> {
     let (out, budget_ms) = parse_args()?;
     let started = Instant::now();
     let examples = repro::examples()?;
-    let (halving, diams) = repro::tables(SplitRule::Halving)?;
-    let (literal, _) = repro::tables(SplitRule::PaperLiteral)?;
-    let runs = solve_all(&examples, SplitRule::Halving)?;
-    let literal_runs = solve_all(&examples, SplitRule::PaperLiteral)?;
+    let (halving, diams) = repro::tables(Variant::DEFAULT)?;
+    let (one_role, one_role_diams) = repro::tables(Variant::ONE_ROLE)?;
+    let (literal, _) = repro::tables(Variant::LITERAL)?;
+    let runs = solve_all(&examples, Variant::DEFAULT)?;
+    let literal_runs = solve_all(&examples, Variant::LITERAL)?;
     let timings = time_all(&examples, budget_ms)?;
     let ctx = Ctx {
         examples,
         halving,
+        one_role,
         literal,
         diams,
+        one_role_diams,
         runs,
         literal_runs,
         timings,
@@ -94,9 +97,14 @@ struct Timing {
 /// Everything the README is written from.
 struct Ctx {
     examples: Vec<Example>,
+    /// Recursion cells, rootclip's default (halving, roles swapped before a split).
     halving: Vec<RecursionCell>,
+    /// Halving, one role assignment (the paper's clip).
+    one_role: Vec<RecursionCell>,
+    /// Algorithm 1 as printed (literal split test, one role assignment).
     literal: Vec<RecursionCell>,
     diams: Vec<DiameterCell>,
+    one_role_diams: Vec<DiameterCell>,
     /// `runs[system][method]`: the table run (ε = 1e-14, no probes, halving).
     runs: Vec<Vec<Solution>>,
     literal_runs: Vec<Vec<Solution>>,
@@ -105,13 +113,13 @@ struct Ctx {
     started: Instant,
 }
 
-fn solve_all(examples: &[Example], split: SplitRule) -> Res<Vec<Vec<Solution>>> {
+fn solve_all(examples: &[Example], variant: Variant) -> Res<Vec<Vec<Solution>>> {
     examples
         .iter()
         .map(|ex| {
             Method::ALL
                 .iter()
-                .map(|&m| Ok(repro::run(ex, m, 1e-14, split)?))
+                .map(|&m| Ok(repro::run(ex, m, 1e-14, variant)?))
                 .collect()
         })
         .collect()
@@ -124,7 +132,7 @@ fn time_all(examples: &[Example], budget_ms: u64) -> Res<Vec<Vec<Vec<Timing>>>> 
         for m in Method::ALL {
             let mut per_lg = Vec::new();
             for lg in LG_EPS {
-                let opts = repro::table_options(m, 10f64.powi(lg), SplitRule::Halving);
+                let opts = repro::table_options(m, 10f64.powi(lg), Variant::DEFAULT);
                 let once = || -> Res<(f64, Solution)> {
                     let t = Instant::now();
                     let sol = std::hint::black_box(solve(&ex.f, &ex.g, Domain::Triangle, &opts)?);
@@ -330,12 +338,17 @@ is the tri-box holding a root after *i* steps (a step is one call of Algorithm 1
 1-to-4 split when the split test says so), its diameter is its longest edge, and the count for ε \
 is the first level with diameter < ε, maximum over the roots. Every clip is a proof (interval \
 enclosures, verified covering) and every root box is certified by Krawczyk's operator; the \
-paper's MATLAB implementation proves nothing. Two split tests (Algorithm 1, line 7):\n\
-* **halving** (rootclip's default, `SplitRule::Halving`): split when the clip did not halve the \
-diameter — the prose of §2.3.5, *“if the diameter of tri-box D′ is larger than half of the size \
-of D”*;\n\
-* **literal** (`SplitRule::PaperLiteral`): split when `u_min + v_min + w_min ≤ 0.5·diam(D)`, the \
-formula as printed.\n\n\
+paper's MATLAB implementation proves nothing. Three variants of Algorithm 1 (`repro::Variant`):\n\
+* **ours** (rootclip's default, `Variant::DEFAULT`, `rootclip tables`): the halving split test \
+(`SplitRule::Halving`: split when the clip did not halve the diameter — the prose of §2.3.5, *“if \
+the diameter of tri-box D′ is larger than half of the size of D”*), and for the hybrid methods one \
+addition: where a clip would not halve the tri-box, a second clip with the equations' roles \
+swapped (`g` linear — preprocessed for `hc` — and `f` quadratic) runs before the split test, and \
+the tri-box keeps what both clips keep ([§5](#5-separating-close-roots-the-second-clip-with-the-roles-swapped));\n\
+* **one role** (`Variant::ONE_ROLE`, `rootclip tables --one-role`): halving, without the swapped \
+clip — the paper's clip;\n\
+* **literal** (`Variant::LITERAL`, `rootclip tables --split paper --one-role`): Algorithm 1 as \
+printed, split when `u_min + v_min + w_min ≤ 0.5·diam(D)`, one role.\n\n\
 Timings: {machine}.\n\n",
         n = ctx.examples.len(),
         machine = machine()
@@ -343,7 +356,7 @@ Timings: {machine}.\n\n",
 }
 
 /// Per method: cells compared, equal, within ±1, mean of ours − paper.
-fn agreement(cells: &[RecursionCell], m: Method) -> (usize, usize, usize, f64) {
+fn agreement(cells: &[RecursionCell], m: Method) -> (usize, usize, usize, usize, f64) {
     let diffs: Vec<i64> = cells
         .iter()
         .filter(|c| c.method == m)
@@ -352,7 +365,8 @@ fn agreement(cells: &[RecursionCell], m: Method) -> (usize, usize, usize, f64) {
     let n = diffs.len();
     let eq = diffs.iter().filter(|&&d| d == 0).count();
     let near = diffs.iter().filter(|&&d| d.abs() <= 1).count();
-    (n, eq, near, diffs.iter().sum::<i64>() as f64 / n.max(1) as f64)
+    let more = diffs.iter().filter(|&&d| d > 0).count();
+    (n, eq, near, more, diffs.iter().sum::<i64>() as f64 / n.max(1) as f64)
 }
 
 fn bisection_matches(ctx: &Ctx) -> (usize, usize) {
@@ -371,12 +385,12 @@ fn bisection_matches(ctx: &Ctx) -> (usize, usize) {
 /// `hc`'s measured order for each system (tracked root), ours and the paper's.
 fn hc_orders(ctx: &Ctx) -> (Vec<Option<f64>>, Vec<Option<f64>>) {
     let ours = (0..ctx.examples.len())
-        .map(|i| repro::convergence_order(&tracked(ctx, i, Method::Hc)))
+        .map(|i| repro::convergence_order(&tracked(ctx, i, Method::Hc), ctx.examples[i].separation))
         .collect();
     let paper = ctx
         .examples
         .iter()
-        .map(|e| repro::convergence_order(&paper_diams(ctx, &e.name, Method::Hc)))
+        .map(|e| repro::convergence_order(&paper_diams(ctx, &e.name, Method::Hc), e.separation))
         .collect();
     (ours, paper)
 }
@@ -384,18 +398,18 @@ fn hc_orders(ctx: &Ctx) -> (Vec<Option<f64>>, Vec<Option<f64>>) {
 fn summary(ctx: &Ctx, s: &mut String) -> Res<()> {
     s.push_str(
         "## Summary\n\nAgreement of the recursion counts (Tables 1, 3, 5) with the paper over all \
-systems and ε: cells equal, cells within ±1, and the mean of ours − paper (negative: we need \
-fewer levels).\n\n\
-| method | halving: equal | halving: ±1 | halving: mean diff | literal: equal | literal: ±1 | literal: mean diff |\n\
-|---|---:|---:|---:|---:|---:|---:|\n",
+systems and ε: cells equal, cells within ±1, cells where we need more levels, and the mean of \
+ours − paper (negative: we need fewer levels).\n\n\
+| method | ours: equal | ±1 | more | mean diff | one role: equal | ±1 | more | mean diff | literal: equal | ±1 | more | mean diff |\n\
+|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
     );
     for m in Method::ALL {
-        let (n, e, w, d) = agreement(&ctx.halving, m);
-        let (_, le, lw, ld) = agreement(&ctx.literal, m);
-        let _ = writeln!(
-            s,
-            "| {m} | {e}/{n} | {w}/{n} | {d:+.1} | {le}/{n} | {lw}/{n} | {ld:+.1} |"
-        );
+        let _ = write!(s, "| {m} |");
+        for cells in [&ctx.halving, &ctx.one_role, &ctx.literal] {
+            let (n, e, w, more, d) = agreement(cells, m);
+            let _ = write!(s, " {e}/{n} | {w}/{n} | {more}/{n} | {d:+.1} |");
+        }
+        s.push('\n');
     }
     let (ours, paper) = hc_orders(ctx);
     let names = join(ctx.examples.iter().map(|e| title(&e.name)));
@@ -422,8 +436,8 @@ Table 2/4/6 diameters: {}. §3 proves 3 ([Convergence order](#convergence-order)
 Example 2 (paper: {} vs {} and {} vs {}), although Eq. (8) is singular on both \
 ([Eq. (8)](#1-eq-8-is-singular-everywhere-on-examples-1-and-2)).\n\
 * The remaining differences are explained [below](#why-the-numbers-differ): the floor of \
-certified diameters, the paper's immediate split at level 1, and the level at which a split \
-separates two close roots.\n\n",
+certified diameters, the paper's immediate split at level 1, and the level at which two close \
+roots are separated (where rootclip's second clip with the roles swapped comes in).\n\n",
         join(ours.iter().map(|&x| fixed2(x))),
         join(paper.iter().map(|&x| fixed2(x))),
         fewer(&ctx.halving),
@@ -442,8 +456,9 @@ separates two close roots.\n\n",
 
 fn recursion_tables(ctx: &Ctx, s: &mut String) {
     s.push_str(
-        "## Tables 1, 3, 5: recursion levels to reach diam < ε\n\nFor each method: ours with the \
-halving split test (default), ours with the paper's literal split test, the paper. “–”: not \
+        "## Tables 1, 3, 5: recursion levels to reach diam < ε\n\nFor each method: ours (default), \
+ours with one role assignment, ours with Algorithm 1 as printed (literal split test, one role), \
+the paper. The three variants differ only for the hybrid methods and in the split test. “–”: not \
 reached.\n\n",
     );
     for ex in &ctx.examples {
@@ -459,7 +474,8 @@ reached.\n\n",
         );
         for m in Method::ALL {
             let rows = [
-                ("ours, halving", &ctx.halving, false),
+                ("ours", &ctx.halving, false),
+                ("ours, one role", &ctx.one_role, false),
                 ("ours, literal", &ctx.literal, false),
                 ("paper", &ctx.halving, true),
             ];
@@ -483,12 +499,13 @@ fn diameter_tables(ctx: &Ctx, s: &mut String) {
     s.push_str(
         "## Tables 2, 4, 6: diameters by level\n\nThe tri-box holding the tracked root — (1/2, 1/8) in \
 Example 1 and (1/8, 1/4) in Example 2 as in the paper; in Example 3 (the paper does not say which \
-root) the one with u > v — with the halving split test. Level 0 is the whole triangle (√2).\n\n",
+root) the one with u > v — ours (default) and, for `hc`, with one role assignment. Level 0 is the \
+whole triangle (√2).\n\n",
     );
     for ex in &ctx.examples {
         let _ = write!(
             s,
-            "### {} — {}\n\n| level | hc-nopre, ours | hc-nopre, paper | hc, ours | hc, paper |\n|---:|---:|---:|---:|---:|\n",
+            "### {} — {}\n\n| level | hc-nopre, ours | hc-nopre, paper | hc, ours | hc, one role | hc, paper |\n|---:|---:|---:|---:|---:|---:|\n",
             title(&ex.name),
             table_no(&ex.name, true)
         );
@@ -500,6 +517,7 @@ root) the one with u > v — with the halving split test. Level 0 is the whole t
         let max_level = ctx
             .diams
             .iter()
+            .chain(ctx.one_role_diams.iter().filter(|c| c.method == Method::Hc))
             .filter(|c| c.example == ex.name)
             .map(|c| c.level)
             .max()
@@ -509,7 +527,11 @@ root) the one with u > v — with the halving split test. Level 0 is the whole t
             let f = |c: Option<&DiameterCell>, paper: bool| {
                 opt(c.and_then(|c| if paper { c.paper } else { c.ours }).map(sci))
             };
-            let row = [f(a, false), f(a, true), f(b, false), f(b, true)];
+            let one = ctx
+                .one_role_diams
+                .iter()
+                .find(|c| c.example == ex.name && c.method == Method::Hc && c.level == level);
+            let row = [f(a, false), f(a, true), f(b, false), f(one, false), f(b, true)];
             if row.iter().any(|x| x != "–") {
                 let _ = writeln!(s, "| {level} | {} |", row.join(" | "));
             }
@@ -529,9 +551,11 @@ fn orders(ctx: &Ctx, s: &mut String) -> Res<()> {
     s.push_str(
         "## Convergence order\n\n`repro::convergence_order`: the median over levels of \
 `log(d_{i+1}/d_i) / log(d_i/d_{i−1})` along the tracked root's path, over steps that start below \
-0.2 and end above 1e-12: a step ending below that measures the rounding floor (certified tri-boxes \
-stop at 1e-15..1e-13 around a root), not the method, whose cubic bound (§3) is about exact \
-arithmetic; the median, not a hand-picked window, then discards split levels. Halving split test; \
+0.2 and below the distance to the nearest other root (a wider tri-box may hold two roots, outside \
+the setting of §3's theorem) and end above 1e-12: a step ending below that measures the rounding \
+floor (certified tri-boxes stop at 1e-15..1e-13 around a root), not the method, whose cubic bound \
+(§3) is about exact arithmetic; the median, not a hand-picked window, then discards split levels. \
+`–`: no step qualifies. Halving split test; \
 the paper's columns are computed the same way from its Tables 2, 4, 6.\n\n\
 | system | bezier | linear | hc-nopre | hc | hc, every root | hc-nopre, paper | hc, paper |\n\
 |---|---:|---:|---:|---:|---:|---:|---:|\n",
@@ -540,16 +564,16 @@ the paper's columns are computed the same way from its Tables 2, 4, 6.\n\n\
         let ours = join(
             Method::ALL
                 .iter()
-                .map(|&m| fixed2(repro::convergence_order(&tracked(ctx, i, m)))),
+                .map(|&m| fixed2(repro::convergence_order(&tracked(ctx, i, m), ex.separation))),
         );
         let roots = join(
             ctx.runs[i][midx(Method::Hc)]
                 .roots
                 .iter()
-                .map(|r| fixed2(repro::convergence_order(&r.diameters))),
+                .map(|r| fixed2(repro::convergence_order(&r.diameters, ex.separation))),
         );
-        let paper =
-            [Method::HcNoPre, Method::Hc].map(|m| fixed2(repro::convergence_order(&paper_diams(ctx, &ex.name, m))));
+        let paper = [Method::HcNoPre, Method::Hc]
+            .map(|m| fixed2(repro::convergence_order(&paper_diams(ctx, &ex.name, m), ex.separation)));
         let _ = writeln!(
             s,
             "| {} | {} | {roots} | {} |",
@@ -559,9 +583,16 @@ the paper's columns are computed the same way from its Tables 2, 4, 6.\n\n\
         );
     }
     let k5 = sys(ctx, "3k5")?;
-    let order = |i: usize, m: Method| repro::convergence_order(&tracked(ctx, i, m));
-    let (cubic, other): (Vec<usize>, Vec<usize>) =
-        (0..ctx.examples.len()).partition(|&i| order(i, Method::Hc).is_some_and(|o| o >= 2.75));
+    let order = |i: usize, m: Method| repro::convergence_order(&tracked(ctx, i, m), ctx.examples[i].separation);
+    let measured: Vec<usize> = (0..ctx.examples.len())
+        .filter(|&i| order(i, Method::Hc).is_some())
+        .collect();
+    let unmeasured: Vec<usize> = (0..ctx.examples.len())
+        .filter(|&i| order(i, Method::Hc).is_none())
+        .collect();
+    let (cubic, other): (Vec<usize>, Vec<usize>) = measured
+        .iter()
+        .partition(|&&i| order(i, Method::Hc).is_some_and(|o| o >= 2.9));
     let second: Vec<f64> = cubic
         .iter()
         .flat_map(|&i| [Method::Linear, Method::HcNoPre].map(|m| order(i, m)))
@@ -574,15 +605,31 @@ the paper's columns are computed the same way from its Tables 2, 4, 6.\n\n\
                 .map(|&i| format!("{} ({})", title(&ctx.examples[i].name), fixed2(order(i, Method::Hc)))),
         )
     };
+    let windows = |v: &[usize]| {
+        join(v.iter().map(|&i| {
+            let d = tracked(ctx, i, Method::Hc);
+            let n = repro::convergence_samples(&d, ctx.examples[i].separation).len();
+            format!(
+                "{} ({}, from {n} window{}; path {})",
+                title(&ctx.examples[i].name),
+                fixed2(order(i, Method::Hc)),
+                if n == 1 { "" } else { "s" },
+                join(d.iter().map(|&x| sci(x)))
+            )
+        }))
+    };
     let _ = write!(
         s,
         "\nAll roots of these systems are simple (k = 5 is close to a double root, not one), so §3's \
 theorem covers every one. `hc` measures ≈ 3 on {} and linear clipping and `hc-nopre` measure \
 {lo:.2}–{hi:.2} there, as Lemma 1 and its linear/quadratic counterparts predict. Each estimate \
-rests on the two to four steps between diameter 0.2 and the rounding floor; a step that contains \
-a split (ratio ≈ 1/2) or ends at the floor pulls the median down, which is what happens on {}. \
-On k = 5 the tracked path is {} — most levels come before the split that separates the two roots \
-(§5 below) or at the floor, and the paper's own Table 6 gives a low value there too.\n\n\
+rests on the few steps between that start and the rounding floor. Below 2.9: {}. With a \
+single window the estimate assumes the same constant C in `d_(i+1) ≈ C·d_i^p` on both of its steps; \
+a factor 2 between them moves it by `ln 2 / ln(d_i/d_(i+1))` (±0.2–0.3 at these ratios). \
+Not measurable: {}. On \
+k = 5 (roots {:.2e} apart) the tracked path is {}: once a tri-box is narrower than the roots' \
+distance, one clip step reaches the rounding floor's neighbourhood, so no step both starts \
+in the one-root regime and ends above 1e-12; the paper's own Table 6 path has the same shape.\n\n\
 Bézier clipping: the paper's counts imply pure bisection (contraction 0.50 per level). Our median \
 contraction per level along the tracked path:\n\n| system | bezier, halving | bezier, literal |\n|---|---:|---:|\n",
         if cubic.is_empty() {
@@ -593,8 +640,14 @@ contraction per level along the tracked path:\n\n| system | bezier, halving | be
         if other.is_empty() {
             "no system".into()
         } else {
-            list(&other)
+            windows(&other)
         },
+        if unmeasured.is_empty() {
+            "no system".into()
+        } else {
+            join(unmeasured.iter().map(|&i| title(&ctx.examples[i].name)))
+        },
+        ctx.examples[k5].separation,
         join(tracked(ctx, k5, Method::Hc).iter().map(|&d| sci(d)))
     );
     for (i, ex) in ctx.examples.iter().enumerate() {

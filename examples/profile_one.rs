@@ -41,6 +41,7 @@ fn main() {
             max_exact: driver::MAX_EXACT_BOXES,
             probe_below: 0.0,
             split: SplitRule::Halving,
+            swap_roles: true,
         };
         let ri = driver::run(&f, &g, None, &limits, &mut |_| Probe::Undecided);
         let (ff, gf) = (f.map(|x| x.mid()), g.map(|x| x.mid()));

@@ -13,7 +13,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .into_iter()
         .find(|e| e.name == name)
         .ok_or("unknown example")?;
-    let sol = repro::run(&ex, method, 1e-14, rootclip::solve::SplitRule::Halving)?;
+    let sol = repro::run(&ex, method, 1e-14, repro::Variant::DEFAULT)?;
     for r in &sol.roots {
         let d: Vec<String> = r.diameters.iter().map(|x| format!("{x:.2e}")).collect();
         println!("root ({:.6}, {:.6}): {}", r.u, r.v, d.join(" "));

@@ -94,6 +94,11 @@ enum Command {
         /// diameter; default) or "paper" (Algorithm 1 line 7 as printed).
         #[arg(long, value_enum, default_value = "halving")]
         split: SplitArg,
+        /// Hybrid methods clip with one role assignment only (f linear, g
+        /// quadratic), as the paper's Algorithm 1; by default a clip that does
+        /// not halve the tri-box is followed by one with the roles swapped.
+        #[arg(long)]
+        one_role: bool,
     },
     /// Every root of f = g = 0 in the domain, each in a certified box.
     Solve {
@@ -180,7 +185,7 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> Result<String, Error> {
     match cli.command {
         Command::Bernstein { f, domain, json } => bernstein(&f, domain, json),
-        Command::Tables { json, split } => tables_cmd(json, split),
+        Command::Tables { json, split, one_role } => tables_cmd(json, split, one_role),
         Command::Ray(args) => rootclip::ray::cli::run(&args),
         Command::Solve {
             f,
@@ -393,13 +398,16 @@ fn table_title(example: &str, diameters: bool) -> String {
     }
 }
 
-fn tables_cmd(json: bool, split: SplitArg) -> Result<String, Error> {
+fn tables_cmd(json: bool, split: SplitArg, one_role: bool) -> Result<String, Error> {
     use rootclip::repro;
-    let rule = match split {
+    let split = match split {
         SplitArg::Halving => solve::SplitRule::Halving,
         SplitArg::Paper => solve::SplitRule::PaperLiteral,
     };
-    let (rec, diam) = repro::tables(rule)?;
+    let (rec, diam) = repro::tables(repro::Variant {
+        split,
+        swap_roles: !one_role,
+    })?;
     if json {
         let mut cells: Vec<Value> = rec
             .iter()

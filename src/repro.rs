@@ -12,6 +12,7 @@
 //!   the roots — so Table 1's counts follow from Table 2's diameters.
 
 use crate::error::{Error, Result};
+use crate::scalar::rational_to_f64;
 use crate::solve::{solve, Domain, Method, Solution, SolveOptions, SplitRule};
 use crate::{parse_polynomial, Polynomial};
 use serde_json::Value;
@@ -36,6 +37,10 @@ pub struct Example {
     pub g: Polynomial,
     /// The root whose diameters Tables 2/4/6 list (approximately).
     pub tracked_root: [f64; 2],
+    /// The smallest distance between two of the system's roots in the
+    /// triangle (`∞` for one root): a tri-box at least this wide may hold two
+    /// roots, where §3's convergence theorem does not apply.
+    pub separation: f64,
 }
 
 /// A recursion-count cell.
@@ -91,35 +96,88 @@ pub fn examples() -> Result<Vec<Example>> {
                     [r[0].as_f64().unwrap_or(0.0), r[1].as_f64().unwrap_or(0.0)]
                 }
             };
+            let roots: Vec<[f64; 2]> = ["roots", "roots_approx"]
+                .iter()
+                .filter_map(|k| e[*k].as_array())
+                .flatten()
+                .map(|r| {
+                    let x = |i: usize| {
+                        r[i].as_f64()
+                            .or_else(|| {
+                                r[i].as_str()
+                                    .and_then(|t| parse_polynomial(t).ok()?.as_constant())
+                                    .map(|q| rational_to_f64(&q))
+                            })
+                            .unwrap_or(f64::NAN)
+                    };
+                    [x(0), x(1)]
+                })
+                .collect();
+            let mut separation = f64::INFINITY;
+            for (i, a) in roots.iter().enumerate() {
+                for b in &roots[i + 1..] {
+                    separation = separation.min((a[0] - b[0]).hypot(a[1] - b[1]));
+                }
+            }
             Ok(Example {
                 name: name.to_string(),
                 f: parse_polynomial(text("f")?)?,
                 g: parse_polynomial(text("g")?)?,
                 tracked_root: tracked,
+                separation,
             })
         })
         .collect()
 }
 
-/// Options of a table run: the paper's algorithm (no Krawczyk probes), down
-/// to `eps`, with the given split test.
-pub fn table_options(method: Method, eps: f64, split: SplitRule) -> SolveOptions {
+/// Which form of Algorithm 1 a table run uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Variant {
+    /// The split test.
+    pub split: SplitRule,
+    /// The hybrid methods' second clip with the roles swapped
+    /// ([`SolveOptions::swap_roles`]).
+    pub swap_roles: bool,
+}
+
+impl Variant {
+    /// rootclip's default: the halving split test, roles swapped before a split.
+    pub const DEFAULT: Variant = Variant {
+        split: SplitRule::Halving,
+        swap_roles: true,
+    };
+    /// The halving split test, one role assignment (the paper's clip).
+    pub const ONE_ROLE: Variant = Variant {
+        split: SplitRule::Halving,
+        swap_roles: false,
+    };
+    /// Algorithm 1 as printed: the literal split test, one role assignment.
+    pub const LITERAL: Variant = Variant {
+        split: SplitRule::PaperLiteral,
+        swap_roles: false,
+    };
+}
+
+/// Options of a table run: Algorithm 1 without Krawczyk probes, down to
+/// `eps`, in the given variant.
+pub fn table_options(method: Method, eps: f64, variant: Variant) -> SolveOptions {
     SolveOptions {
         method,
         eps,
         probe: false,
-        split,
+        split: variant.split,
+        swap_roles: variant.swap_roles,
         ..SolveOptions::default()
     }
 }
 
 /// Solves one example with one method for the tables.
-pub fn run(example: &Example, method: Method, eps: f64, split: SplitRule) -> Result<Solution> {
+pub fn run(example: &Example, method: Method, eps: f64, variant: Variant) -> Result<Solution> {
     solve(
         &example.f,
         &example.g,
         Domain::Triangle,
-        &table_options(method, eps, split),
+        &table_options(method, eps, variant),
     )
 }
 
@@ -157,15 +215,15 @@ pub fn tracked_diameters(sol: &Solution, target: [f64; 2]) -> Vec<f64> {
 }
 
 /// All cells of Tables 1–6: recursion counts for every example × method ×
-/// `lg ε`, and diameters by level for `hc-nopre` and `hc`, with the given
-/// split test.
-pub fn tables(split: SplitRule) -> Result<(Vec<RecursionCell>, Vec<DiameterCell>)> {
+/// `lg ε`, and diameters by level for `hc-nopre` and `hc`, in the given
+/// variant of Algorithm 1.
+pub fn tables(variant: Variant) -> Result<(Vec<RecursionCell>, Vec<DiameterCell>)> {
     let d = data()?;
     let mut rec = Vec::new();
     let mut diam = Vec::new();
     for ex in examples()? {
         for method in Method::ALL {
-            let sol = run(&ex, method, 1e-14, split)?;
+            let sol = run(&ex, method, 1e-14, variant)?;
             for lg in LG_EPS {
                 rec.push(RecursionCell {
                     example: ex.name.clone(),
@@ -198,21 +256,30 @@ pub fn tables(split: SplitRule) -> Result<(Vec<RecursionCell>, Vec<DiameterCell>
 }
 
 /// The measured convergence order from a diameter sequence: the median of
-/// `log(d_{i+1}/d_i) / log(d_i/d_{i−1})` over steps that start below `0.2`
-/// and end above `1e-12`. A step that ends below that measures the rounding
+/// `log(d_{i+1}/d_i) / log(d_i/d_{i−1})` over steps that start below
+/// `min(0.2, separation)` and end above `1e-12`. Below `separation` (the
+/// distance to the nearest other root) a tri-box holds one root, the setting
+/// of §3's theorem; a larger one may hold two, and its clips are not in the
+/// asymptotic regime. A step that ends below `1e-12` measures the rounding
 /// floor (certified tri-boxes stop at 1e-15..1e-13 around a root; the
-/// paper's float ones at ~1e-16), not the method: §3's cubic bound
-/// `d_{i+1} ≤ C d_i³` is about exact arithmetic.
-pub fn convergence_order(diams: &[f64]) -> Option<f64> {
-    let d: Vec<f64> = diams.iter().copied().take_while(|&x| x > 1e-15).collect();
-    let mut orders: Vec<f64> = d
-        .windows(3)
-        .filter(|w| w[1] < w[0] && w[2] < w[1] && w[1] < 0.2 && w[2] > 1e-12)
-        .map(|w| (w[2] / w[1]).ln() / (w[1] / w[0]).ln())
-        .collect();
+/// paper's float ones at ~1e-16), not the method: the cubic bound
+/// `d_{i+1} ≤ C d_i³` is about exact arithmetic. `None` when no step
+/// qualifies.
+pub fn convergence_order(diams: &[f64], separation: f64) -> Option<f64> {
+    let mut orders = convergence_samples(diams, separation);
     if orders.is_empty() {
         return None;
     }
     orders.sort_by(f64::total_cmp);
     Some(orders[orders.len() / 2])
+}
+
+/// The per-window estimates behind [`convergence_order`], in level order.
+pub fn convergence_samples(diams: &[f64], separation: f64) -> Vec<f64> {
+    let start_below = separation.min(0.2);
+    let d: Vec<f64> = diams.iter().copied().take_while(|&x| x > 1e-15).collect();
+    d.windows(3)
+        .filter(|w| w[1] < w[0] && w[2] < w[1] && w[0] < start_below && w[2] > 1e-12)
+        .map(|w| (w[2] / w[1]).ln() / (w[1] / w[0]).ln())
+        .collect()
 }

@@ -406,3 +406,29 @@ fn random_dense_systems_miss_no_newton_root() {
     }
     assert!(checked >= 5, "the referee must actually check roots ({checked})");
 }
+
+/// The target for the tables: `hc` needs no more levels than the
+/// paper in any cell of Tables 1, 3 and 5 (recursion counts are
+/// deterministic: no timing involved). With one role assignment (the
+/// paper's clip) Example 3 with k = 2 and 5 are 1–2 levels behind, which is
+/// why the second clip exists; that is checked too, so this test notices if
+/// the swap stops mattering.
+#[test]
+fn hc_recursion_counts_match_or_beat_the_paper() {
+    let (cells, _) = rootclip::repro::tables(rootclip::repro::Variant::DEFAULT).unwrap();
+    let hc: Vec<_> = cells.iter().filter(|c| c.method == Method::Hc).collect();
+    assert_eq!(hc.len(), 35);
+    for c in &hc {
+        let (ours, paper) = (c.ours.expect("every cell reached"), c.paper.expect("paper cell"));
+        assert!(
+            ours <= paper,
+            "{} lg eps {}: {ours} > paper {paper}",
+            c.example,
+            c.lg_eps
+        );
+    }
+    let (one_role, _) = rootclip::repro::tables(rootclip::repro::Variant::ONE_ROLE).unwrap();
+    assert!(one_role
+        .iter()
+        .any(|c| c.method == Method::Hc && c.ours.unwrap_or(usize::MAX) > c.paper.unwrap_or(0)));
+}

@@ -308,7 +308,7 @@ triangles whose vertices are adjacent floats, which no computation can certify:\
     let sol = &ctx.runs[k5][midx(Method::Hc)];
     let theta = crossing_angle(ex, ex.tracked_root);
     let (f, g, _) = system(ex);
-    let enclosed = solve_triangle(&f, &g, &repro::table_options(Method::Hc, 1e-14, SplitRule::Halving))?;
+    let enclosed = solve_triangle(&f, &g, &repro::table_options(Method::Hc, 1e-14, Variant::DEFAULT))?;
     let lv = |sol: &Solution, lg: i32| opt(sol.recursions(10f64.powi(lg)));
     let path = |sol: &Solution| join(repro::tracked_diameters(sol, ex.tracked_root).iter().map(|&d| sci(d)));
     let _ = write!(
@@ -436,9 +436,9 @@ rather than the clipped D′ (Algorithm 1, line 8 says D′).\n\n",
 /// The level at which the tracked root and its nearest other root are first
 /// in different tri-boxes of the `hc`/`hc-nopre` recursion tree, and their
 /// distance. `None` for one-root systems.
-fn separation_in_tree(ex: &Example, m: Method) -> Res<Option<(f64, Option<usize>)>> {
+fn separation_in_tree(ex: &Example, m: Method, variant: Variant) -> Res<Option<(f64, Option<usize>)>> {
     let (f, g, exact) = system(ex);
-    let o = repro::table_options(m, 1e-14, SplitRule::Halving);
+    let o = repro::table_options(m, 1e-14, variant);
     let limits = Limits {
         method: m,
         eps: o.eps,
@@ -447,9 +447,10 @@ fn separation_in_tree(ex: &Example, m: Method) -> Res<Option<(f64, Option<usize>
         max_exact: driver::MAX_EXACT_BOXES,
         probe_below: 0.0,
         split: o.split,
+        swap_roles: o.swap_roles,
     };
     let run = driver::run(&f, &g, Some(&exact), &limits, &mut |_| Probe::Undecided);
-    let sol = repro::run(ex, m, 1e-14, SplitRule::Halving)?;
+    let sol = repro::run(ex, m, 1e-14, variant)?;
     let near = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
     let roots: Vec<[f64; 2]> = sol.roots.iter().map(|r| [r.u, r.v]).collect();
     let Some(&a) = roots
@@ -493,64 +494,74 @@ fn separation_bound(d: &[f64], dist: f64) -> Option<usize> {
 
 pub(super) fn explain_separation(ctx: &Ctx, s: &mut String) -> Res<()> {
     s.push_str(
-        "### 5. Where `hc` still needs more levels than the paper: separating close roots\n\nWhile \
-two roots lie in one tri-box no clip can shrink it below their distance; only a split separates \
-them, and the fast convergence starts after that. The level of that split depends on where the \
-split lines fall, i.e. on every earlier clip — and our level 1 already differs from the paper's \
-(§4). Tracked root vs its nearest other root: the level at which they are in different tri-boxes \
-in our recursion tree, and the bound that the diameters alone give (by this level at the latest) \
-for ours and for the paper's:\n\n\
-| system | method | distance | ours, from the tree | ours, bound from diameters | paper, bound from diameters |\n\
+        "### 5. Separating close roots: the second clip with the roles swapped\n\nWhile two roots \
+lie in one tri-box no clip can shrink it below their distance; a split or a luckier clip must \
+separate them, and the fast convergence starts after that. With the paper's clip alone (f linear, \
+g quadratic: `--one-role`) our `hc` separated the two roots of Example 3 later than the paper and \
+needed more levels in the cells listed below. rootclip therefore adds one step to Algorithm 1 for \
+the hybrid methods: where a clip would not halve the tri-box, it clips once more with the roles \
+swapped (g linear — preprocessed for `hc` — and f quadratic) and keeps what both clips keep \
+(`Limits::swap_roles`). Both clips are rigorous, so their intersection is; the two role \
+assignments bound the region from different sides, and on two close roots the swapped one often \
+cuts between them, so no split is needed. It costs one more clip on each tri-box that would \
+otherwise be split ([timings](#time-vs-accuracy-figs-4c-5b-7)).\n\nTracked root vs its nearest \
+other root: the level at which they are in different tri-boxes of the recursion tree, ours and \
+with one role, and the bound that the paper's diameters give (by this level at the latest):\n\n\
+| system | method | distance | ours, from the tree | one role, from the tree | paper, bound from diameters |\n\
 |---|---|---:|---:|---:|---:|\n",
     );
-    let mut later = Vec::new();
-    for (i, ex) in ctx.examples.iter().enumerate() {
+    for ex in &ctx.examples {
         for m in [Method::HcNoPre, Method::Hc] {
-            let Some((dist, tree)) = separation_in_tree(ex, m)? else {
+            let Some((dist, tree)) = separation_in_tree(ex, m, Variant::DEFAULT)? else {
                 continue;
             };
+            let one = separation_in_tree(ex, m, Variant::ONE_ROLE)?.and_then(|x| x.1);
             let mut paper = vec![DIAM0];
             paper.extend(paper_diams(ctx, &ex.name, m));
-            let (ob, pb) = (
-                separation_bound(&tracked(ctx, i, m), dist),
-                separation_bound(&paper, dist),
-            );
             let _ = writeln!(
                 s,
                 "| {} | {m} | {} | {} | {} | {} |",
                 title(&ex.name),
                 sci(dist),
                 opt(tree),
-                opt(ob),
-                opt(pb)
+                opt(one),
+                opt(separation_bound(&paper, dist))
             );
-            if let (Method::Hc, Some(t), Some(p)) = (m, tree, pb) {
-                if t > p {
-                    later.push(format!("{} (level {t}, the paper by level {p})", title(&ex.name)));
-                }
-            }
         }
     }
     s.push_str(
-        "\nCells (halving) where our `hc` count exceeds the paper's, with the levels each root \
-needs:\n\n| system | lg ε | ours | paper | levels per root |\n|---|---:|---:|---:|---|\n",
+        "\nCells where our `hc` needs more levels than the paper, with the levels each root needs:\n\n\
+| variant | system | lg ε | ours | paper | levels per root |\n|---|---|---:|---:|---:|---|\n",
     );
-    let mut excess = Vec::new();
-    for (i, ex) in ctx.examples.iter().enumerate() {
-        for lg in LG_EPS {
-            let Some(RecursionCell {
-                ours: Some(o),
-                paper: Some(p),
-                ..
-            }) = cell(&ctx.halving, &ex.name, Method::Hc, lg)
-            else {
-                continue;
-            };
-            if o > p {
-                if !excess.contains(&title(&ex.name)) {
-                    excess.push(title(&ex.name));
+    let mut excess = [Vec::new(), Vec::new()];
+    for (k, (label, cells, variant)) in [
+        ("ours", &ctx.halving, Variant::DEFAULT),
+        ("one role", &ctx.one_role, Variant::ONE_ROLE),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        for ex in &ctx.examples {
+            let mut sol = None;
+            for lg in LG_EPS {
+                let Some(RecursionCell {
+                    ours: Some(o),
+                    paper: Some(p),
+                    ..
+                }) = cell(cells, &ex.name, Method::Hc, lg)
+                else {
+                    continue;
+                };
+                if o <= p {
+                    continue;
                 }
-                let per = ctx.runs[i][midx(Method::Hc)].roots.iter().map(|r| {
+                if !excess[k].contains(&title(&ex.name)) {
+                    excess[k].push(title(&ex.name));
+                }
+                if sol.is_none() {
+                    sol = Some(repro::run(ex, Method::Hc, 1e-14, variant)?);
+                }
+                let per = sol.iter().flat_map(|x| &x.roots).map(|r| {
                     format!(
                         "({:.3}, {:.3}): {}",
                         r.u,
@@ -558,24 +569,33 @@ needs:\n\n| system | lg ε | ours | paper | levels per root |\n|---|---:|---:|--
                         opt(r.diameters.iter().position(|&d| d < 10f64.powi(lg)))
                     )
                 });
-                let _ = writeln!(s, "| {} | {lg} | {o} | {p} | {} |", title(&ex.name), join(per));
+                let _ = writeln!(
+                    s,
+                    "| {label} | {} | {lg} | {o} | {p} | {} |",
+                    title(&ex.name),
+                    join(per)
+                );
             }
         }
     }
-    if excess.is_empty() {
-        s.push_str("| (none) | | | | |\n");
+    if excess.iter().all(Vec::is_empty) {
+        s.push_str("| (none) | | | | | |\n");
     }
-    let none = |v: Vec<String>| if v.is_empty() { "no system".to_string() } else { join(v) };
+    let none = |v: &[String]| {
+        if v.is_empty() {
+            "no system".to_string()
+        } else {
+            join(v.iter().cloned())
+        }
+    };
     let _ = write!(
         s,
-        "\nOur `hc` separates the tracked root from its neighbour later than the paper on {}; our `hc` \
-count exceeds the paper's on {}. A later separating split shifts every later level by the same \
-amount; after it, compare the contraction per level in the diameter tables. The lg ε ≤ −12 \
-columns of Example 3 with k = 5 also carry the rounding-floor levels of §3. The separation level \
-is not a property of the method: it follows from where the earlier clips left the split lines, \
-and with a different first clip either implementation could be the lucky one.\n",
-        none(later),
-        none(excess)
+        "\nOur `hc` needs more levels than the paper in some cell of {} (ours) and of {} (one role). \
+The separation level is not a property of the method alone: it follows from where the earlier \
+clips left the split lines, and with a different first clip either implementation could be the \
+lucky one; the second clip makes rootclip less dependent on that luck.\n",
+        none(&excess[0]),
+        none(&excess[1])
     );
     Ok(())
 }

@@ -7,8 +7,8 @@
 //! produces are one level deeper. Check-sign (§2.3.4) discards a tri-box when
 //! every coefficient of `f` or of `g` on it has one strict sign.
 
-use super::fatcurve::ClipBounds;
-use super::method::{clip_bounds, Method};
+use super::fatcurve::{intersect_bounds, ClipBounds};
+use super::method::{clip_bounds_with, Method};
 use super::num::Num;
 use super::tribox::TriBox;
 use crate::poly::dyadic::subdivide_dyadic;
@@ -39,6 +39,14 @@ pub struct Limits {
     pub probe_below: f64,
     /// The split test.
     pub split: SplitRule,
+    /// For [`Method::Hc`] and [`Method::HcNoPre`]: where the clip would not
+    /// halve the tri-box, clip once more with the equations' roles swapped
+    /// (`g` linear, preprocessed for `hc`; `f` quadratic) and keep what both
+    /// clips keep, before the split test. Not in the paper's Algorithm 1
+    /// (`false` runs it as printed). Each clip is rigorous, so their
+    /// intersection is; it separates two close roots without the split the
+    /// one-role clip needs (Example 3, k = 2 and 5).
+    pub swap_roles: bool,
 }
 
 /// When a step splits the clipped tri-box 1-to-4 (Algorithm 1, line 7).
@@ -155,6 +163,9 @@ pub struct Counters {
     pub exact_restarts: usize,
     /// Tri-boxes whose polynomials were computed from the exact input.
     pub exact_boxes: usize,
+    /// Second hybrid clips with the equations' roles swapped
+    /// ([`Limits::swap_roles`]).
+    pub role_swaps: usize,
 }
 
 /// What the loop produced.
@@ -174,6 +185,27 @@ pub struct Run<S> {
     /// edges where both equations may vanish ([`vanishing_edges`]); they are
     /// undecided regions, never explored.
     pub strips: Vec<[[f64; 2]; 2]>,
+    /// The float kernel's absolute coefficient noise (0 for the rigorous
+    /// kernels): added to fat-curve widths and check-sign thresholds.
+    pub noise: f64,
+}
+
+/// Check-sign with untracked noise (plain `f64`): every coefficient of one
+/// strict sign and, in the float kernel, larger than `noise` in magnitude.
+fn signed_beyond<S: Num>(f: &TriBezier<S>, noise: f64) -> bool {
+    uniform_sign(f).is_some() && (S::KERNEL.is_rigorous() || f.coeffs().iter().all(|c| c.mag() > noise))
+}
+
+/// The absolute rounding noise of coefficients computed in plain `f64` from
+/// `f` and `g` by subdivision: `64·n·2⁻⁵³·max|coefficient|` (de Casteljau
+/// errs by a few units in the last place of the largest coefficient per
+/// step). 0 for the rigorous kernels, whose enclosures carry their errors.
+fn float_noise<S: Num>(f: &TriBezier<S>, g: &TriBezier<S>) -> f64 {
+    if S::KERNEL.is_rigorous() {
+        return 0.0;
+    }
+    let m = f.coeffs().iter().chain(g.coeffs()).map(|c| c.mag()).fold(0.0, f64::max);
+    64.0 * f.degree().max(g.degree()).max(1) as f64 * f64::EPSILON * 0.5 * m
 }
 
 /// A strict sign shared by every coefficient (the polynomial has that sign on
@@ -200,6 +232,7 @@ pub fn run<S: Num>(
         counters: Counters::default(),
         futile_probes: 0,
         strips: Vec::new(),
+        noise: float_noise(f, g),
     };
     if uniform_sign(f).is_some() || uniform_sign(g).is_some() {
         out.counters.sign_exclusions += 1;
@@ -426,7 +459,20 @@ fn step<S: Num>(
             ..item
         };
     }
-    let mins = match clip_bounds(limits.method, &item.fa, &item.fb, item.tb.incenter_bary()) {
+    let incenter = item.tb.incenter_bary();
+    let noise = out.noise;
+    let mut bounds = clip_bounds_with(limits.method, &item.fa, &item.fb, incenter, noise);
+    if limits.swap_roles && matches!(limits.method, Method::Hc | Method::HcNoPre) {
+        if let ClipBounds::Keep(m) = bounds {
+            // The kept tri-box is similar to this one with ratio 1 − Σ mins.
+            if 1.0 - m.iter().sum::<f64>() > 0.5 {
+                out.counters.role_swaps += 1;
+                let swapped = clip_bounds_with(limits.method, &item.fb, &item.fa, incenter, noise);
+                bounds = intersect_bounds(bounds, swapped, S::KERNEL);
+            }
+        }
+    }
+    let mins = match bounds {
         ClipBounds::Empty => {
             out.counters.clip_exclusions += 1;
             return;
@@ -447,7 +493,7 @@ fn step<S: Num>(
         }
         _ => (item.tb, item.fa, item.fb),
     };
-    if uniform_sign(&fa).is_some() || uniform_sign(&fb).is_some() {
+    if signed_beyond(&fa, noise) || signed_beyond(&fb, noise) {
         out.counters.sign_exclusions += 1;
         return;
     }

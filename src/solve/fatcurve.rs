@@ -154,10 +154,16 @@ impl<S: Num> Fat<S> {
 
 impl<S: Geo> Fat<S> {
     fn possibly_contains(&self, s: S, t: S) -> bool {
-        let (val, d) = match self {
-            Fat::Line(l, d) => (l.eval(s, t), *d),
-            Fat::Conic(q, d) => (q.eval(s, t), *d),
+        let (val, d, scale) = match self {
+            Fat::Line(l, d) => (l.eval(s, t), *d, l.c.iter().map(|c| c.mag()).sum::<f64>()),
+            Fat::Conic(q, d) => (q.eval(s, t), *d, q.c.iter().map(|c| c.mag()).sum::<f64>()),
         };
+        // The float kernel's candidates lie on the boundary curves only up to
+        // the rounding of their computation (root solving loses digits near
+        // tangency): allow that much on the scale of the curve's terms
+        // (`s, t ∈ [0, 1]`), or boundary points are lost. Rigorous kernels
+        // carry it in their enclosures.
+        let d = if S::RIGOROUS { d } else { d + 1e-9 * scale };
         val.possibly_le(d) && val.possibly_ge(-d)
     }
 }

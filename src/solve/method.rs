@@ -57,6 +57,13 @@ impl FromStr for Method {
 /// (Algorithm 2) with `δ` rounded up. For `deg f ≤ k` the approximant is `f`
 /// itself (rounded to points) and `δ` covers the coefficient enclosures.
 pub fn fat_curve<S: Num>(f: &TriBezier<S>, k: usize) -> Fat<S> {
+    fat_curve_with(f, k, 0.0)
+}
+
+/// [`fat_curve`] with `noise` added to `δ` in the float kernel: the absolute
+/// rounding noise of `f`'s coefficients, which plain `f64` does not track
+/// (ignored by the rigorous kernels, whose enclosures carry it).
+fn fat_curve_with<S: Num>(f: &TriBezier<S>, k: usize, noise: f64) -> Fat<S> {
     let (approx, delta) = if f.degree() > k {
         let r = f.reduce_l2(k).expect("k < degree");
         (r.approx, r.delta.upper())
@@ -76,7 +83,7 @@ pub fn fat_curve<S: Num>(f: &TriBezier<S>, k: usize) -> Fat<S> {
     let delta = if S::KERNEL.is_rigorous() {
         delta
     } else {
-        delta + 1e-12 * f.coeffs().iter().map(|c| c.mag()).fold(0.0, f64::max)
+        delta + noise + 1e-12 * f.coeffs().iter().map(|c| c.mag()).fold(0.0, f64::max)
     };
     match k {
         1 => Fat::Line(Linear::from_bb(&approx), delta),
@@ -263,27 +270,49 @@ fn strip_width<S: Num>(fat: &Fat<S>) -> f64 {
 /// hulls) prove the tri-box root-free. `incenter` is the tri-box incenter in
 /// its own barycentric coordinates (for `Hc`).
 pub fn clip_bounds<S: Num>(method: Method, fa: &TriBezier<S>, fb: &TriBezier<S>, incenter: [f64; 3]) -> ClipBounds {
+    clip_bounds_with(method, fa, fb, incenter, 0.0)
+}
+
+/// [`clip_bounds`] for coefficients with absolute rounding noise `noise`
+/// that the kernel does not track (plain `f64`; the rigorous kernels ignore
+/// it): every fat curve's `δ` is widened by the noise of its polynomial.
+pub fn clip_bounds_with<S: Num>(
+    method: Method,
+    fa: &TriBezier<S>,
+    fb: &TriBezier<S>,
+    incenter: [f64; 3],
+    noise: f64,
+) -> ClipBounds {
+    let fat = |p: &TriBezier<S>, k: usize| fat_curve_with(p, k, noise);
     match method {
         Method::Bezier => intersect_bounds(bezier_bounds(fa), bezier_bounds(fb), S::KERNEL),
-        Method::Linear => clip_against_fat_curves(&[fat_curve(fa, 1), fat_curve(fb, 1)]),
-        Method::HcNoPre => clip_against_fat_curves(&[fat_curve(fa, 1), fat_curve(fb, 2)]),
+        Method::Linear => clip_against_fat_curves(&[fat(fa, 1), fat(fb, 1)]),
+        Method::HcNoPre => clip_against_fat_curves(&[fat(fa, 1), fat(fb, 2)]),
         Method::Hc => {
-            let plain = fat_curve(fa, 1);
+            let plain = fat(fa, 1);
             let delta = fa.sub(fb);
             let jb = jet(fb, incenter);
+            // f̂ and its noise: |ℓ|·(noise of Δ = 2·noise) + noise for the
+            // paper's form, (|ℓ| + |m|)·noise for the general one.
             let fhat = match paper_multiplier(&jet(&delta, incenter), &jb, incenter) {
-                Some(l) => Some(apply_paper(&delta, fb, l)),
-                None => general_multipliers(&jet(fa, incenter), &jb).map(|x| apply_general(fa, fb, x, incenter)),
+                Some(l) => {
+                    let size = l[0].abs() + l[1].abs() + l[2].abs();
+                    Some((apply_paper(&delta, fb, l), (2.0 * size + 1.0) * noise))
+                }
+                None => general_multipliers(&jet(fa, incenter), &jb).map(|x| {
+                    let size = 2.0 + x.iter().map(|v| v.abs()).sum::<f64>();
+                    (apply_general(fa, fb, x, incenter), size * noise)
+                }),
             };
             // The preprocessed line wins asymptotically (δ = O(h³)), but on large
             // tri-boxes, or at the rounding floor where the local Hessians are
             // noise, f̂ can be worse than f^α: keep the narrower strip. Both are
             // rigorous, so the choice affects speed only.
-            let line = match fhat.map(|p| fat_curve(&p, 1)) {
+            let line = match fhat.map(|(p, n)| fat_curve_with(&p, 1, n)) {
                 Some(pre) if strip_width(&pre) < strip_width(&plain) => pre,
                 _ => plain,
             };
-            clip_against_fat_curves(&[line, fat_curve(fb, 2)])
+            clip_against_fat_curves(&[line, fat(fb, 2)])
         }
     }
 }

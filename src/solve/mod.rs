@@ -61,6 +61,10 @@ pub struct SolveOptions {
     pub probe: bool,
     /// When a step splits 1-to-4 (default [`SplitRule::Halving`]).
     pub split: SplitRule,
+    /// Before a split, a second hybrid clip with the equations' roles swapped
+    /// ([`Limits::swap_roles`]; default `true`, used by the tables too;
+    /// `false` with `probe = false` is the paper's Algorithm 1 as printed).
+    pub swap_roles: bool,
     /// How [`Domain::Square`] is solved by [`solve`] (default
     /// [`SquareRoute::Triangles`], the paper's conversion).
     pub square_route: SquareRoute,
@@ -93,6 +97,7 @@ impl Default for SolveOptions {
             max_depth: 400,
             probe: true,
             split: SplitRule::Halving,
+            swap_roles: true,
             square_route: SquareRoute::Triangles,
         }
     }
@@ -108,6 +113,7 @@ impl SolveOptions {
             max_exact: driver::MAX_EXACT_BOXES,
             probe_below: if self.probe { 1e-3 } else { 0.0 },
             split: self.split,
+            swap_roles: self.swap_roles,
         }
     }
 }
