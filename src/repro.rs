@@ -2,12 +2,16 @@
 //!
 //! The paper's systems and numbers are read from
 //! `papers/hybrid-clipping-2016/paper_tables.json` (embedded at compile
-//! time); ours are recomputed by running the certified solver with the
-//! paper's Algorithm 1 unchanged (no Krawczyk probes, `ε = 1e-14`) and reading
-//! the recursion tree:
+//! time); ours are recomputed by running the certified solver with
+//! Algorithm 1 (no Krawczyk probes, `ε = 1e-14`) in one of three
+//! [`Variant`]s — rootclip's default (the halving split test, and for the
+//! hybrid methods a second clip with the roles swapped before a split), one
+//! role assignment, or the paper's Algorithm 1 as printed — and reading the
+//! recursion tree:
 //! * level `i` is the tri-box holding a root after `i` steps (a step is one
-//!   call of Algorithm 1: a clip, followed by a 1-to-4 split when the clip did
-//!   not halve the diameter); its diameter is its longest edge;
+//!   call of Algorithm 1: a clip — with the default variant possibly two,
+//!   intersected — followed by a 1-to-4 split when the clip did not halve the
+//!   diameter); its diameter is its longest edge;
 //! * `recursions(ε)` is the first level whose diameter is `< ε`, maximum over
 //!   the roots — so Table 1's counts follow from Table 2's diameters.
 

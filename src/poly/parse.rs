@@ -12,7 +12,7 @@
 //! Numbers are read exactly (`0.1` is 1/10, `2.5e-3` is 1/400). Division is by
 //! non-zero constants only. `-u^2` is `-(u^2)`. Errors name what is wrong and the
 //! byte offset; nothing panics. Limits: nesting depth 200, exponents and
-//! total degree up to [`MAX_DEGREE`](super::monomial::MAX_DEGREE), decimal
+//! total degree up to [`super::monomial::MAX_DEGREE`], decimal
 //! exponents up to ±10000.
 //!
 //! ```

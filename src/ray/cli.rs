@@ -24,7 +24,7 @@ use serde_json::{json, Value};
 /// Arguments of `rootclip ray`.
 #[derive(Clone, Debug, Default, clap::Args)]
 pub struct RayArgs {
-    /// PATCH.json: {"type":"triangle"|"tensor"|"bspline","degree":..,"points":[[x,y,z],..],"weights":[..]}
+    /// PATCH.json: {"type":"triangle"|"tensor"|"bspline","degree":..,"points":\[\[x,y,z\],..\],"weights":\[..\]}
     /// (B-splines also "knots_u", "knots_v").
     #[arg(long)]
     pub patch: String,

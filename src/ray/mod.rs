@@ -239,7 +239,7 @@ pub fn intersect(patch: &Patch, ray: &Ray, opts: &SolveOptions) -> Result<RayOut
 /// How a tensor-product patch is solved.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum TensorRoute {
-    /// Native Bézier clipping on boxes ([`solve_rect`]), with the query's
+    /// Native Bézier clipping on boxes ([`solve_rect`](crate::solve::rect::solve_rect)), with the query's
     /// pruning inside the solve (boxes farther than a certified hit dropped,
     /// the nearer child first); a ray that exhausts its budget is retried through
     /// [`TensorRoute::Triangles`]. The default: measured over 20 times

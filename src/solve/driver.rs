@@ -34,8 +34,8 @@ pub struct Limits {
     /// exact phase can take minutes.
     pub max_exact: usize,
     /// Probe stalled tri-boxes (clip did not halve) smaller than this with
-    /// the `probe` callback of [`run`]; `0` disables probing (the paper's
-    /// algorithm, used for the tables).
+    /// the `probe` callback of [`run`]; `0` disables probing (as the tables
+    /// do).
     pub probe_below: f64,
     /// The split test.
     pub split: SplitRule,

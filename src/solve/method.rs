@@ -19,6 +19,8 @@ pub enum Method {
     /// for `g`.
     HcNoPre,
     /// Hybrid clipping: a fat line for the preprocessed `f̂`, a fat conic for `g`.
+    /// (The driver may add a second clip with the roles swapped:
+    /// [`Limits::swap_roles`](super::driver::Limits::swap_roles).)
     Hc,
 }
 

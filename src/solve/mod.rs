@@ -57,7 +57,8 @@ pub struct SolveOptions {
     /// Probe stalled tri-boxes (a clip that did not halve) below diameter
     /// `1e-3` with Krawczyk: certify or exclude them early, and stop
     /// refining undecided ones below `1e-9` (multiple roots). Default `true`;
-    /// `false` runs the paper's Algorithm 1 unchanged (used by the tables).
+    /// `false` runs Algorithm 1 without probes (used by the tables; with
+    /// `swap_roles = false` too it is the paper's Algorithm 1 unchanged).
     pub probe: bool,
     /// When a step splits 1-to-4 (default [`SplitRule::Halving`]).
     pub split: SplitRule,

@@ -9,7 +9,7 @@
 //! The fat-curve candidate geometry (`fatcurve`) runs on a separate, smaller
 //! kernel, [`Geo`]: `f64` for the float kernel, and for the interval kernel
 //! [`GeoIv`], branchless outward-rounded intervals that need no rounding-mode
-//! switches (see [`crate::scalar::iv`] for why each operation encloses the exact
+//! switches (see `crate::scalar::iv` for why each operation encloses the exact
 //! result). Its enclosures are a few floats wider than inari's, and just as
 //! rigorous.
 
@@ -262,7 +262,7 @@ impl Geo for Interval {
 /// compiler turns into two-lane vector instructions (as in
 /// `scalar::endpoints`, the same technique for the Bernstein kernels).
 ///
-/// Operands outside the ranges (huge, tiny, infinite) go to [`Iv`]'s
+/// Operands outside the ranges (huge, tiny, infinite) go to `Iv`'s
 /// operations instead: outward by a relative `2⁻⁵¹` plus a tiny absolute
 /// term, also rigorous, just not inari's floats.
 ///

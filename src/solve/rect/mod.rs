@@ -57,7 +57,7 @@
 //! touching it is a candidate (two candidates that overlap are merged when
 //! Krawczyk proves one root in their hull); otherwise the leaf is undecided.
 //!
-//! Interval arithmetic: the hot loops use [`Iv`] (nearest rounding moved one
+//! Interval arithmetic: the hot loops use `Iv` (nearest rounding moved one
 //! float outward), certification of leaves uses inari.
 
 mod fatline;
