@@ -585,7 +585,7 @@ fn step<S: Num>(
     for kid in kids.into_iter().rev() {
         count_exact(out, item.exact);
         let (ka, kb) = restrict_pair(f, g, exact, item.exact, &kid);
-        if uniform_sign(&ka).is_some() || uniform_sign(&kb).is_some() {
+        if signed_beyond(&ka, out.noise) || signed_beyond(&kb, out.noise) {
             out.counters.sign_exclusions += 1;
             continue;
         }

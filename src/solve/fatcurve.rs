@@ -314,10 +314,14 @@ fn clip_in<G: Geo>(fats: &[Fat<G>], kernel: Kernel) -> ClipBounds {
             }
         }
     }
+    // Float candidates on an edge of the tri-box (s, t or w = 0) land a few
+    // ulps of 1 to either side of it: accept them, or a root on the edge is
+    // clipped away. Rigorous kernels need no slack.
+    let slack = if G::RIGOROUS { 0.0 } else { -1e-12 };
     let feasible = |s: G, t: G| {
-        s.possibly_ge(0.0)
-            && t.possibly_ge(0.0)
-            && (G::pt(1.0) - s - t).possibly_ge(0.0)
+        s.possibly_ge(slack)
+            && t.possibly_ge(slack)
+            && (G::pt(1.0) - s - t).possibly_ge(slack)
             && fats.iter().all(|f| f.possibly_contains(s, t))
     };
     let mut bounds = Bounds::new();
