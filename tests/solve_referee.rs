@@ -446,8 +446,8 @@ fn plain_f64_iteration_ends_near_every_root() {
         assert!(certified.complete && !certified.roots.is_empty(), "{}", ex.name);
         let n = ex.f.total_degree().max(ex.g.total_degree()) as usize;
         let (f, g) = (
-            ex.f.to_triangle(n).map(|x| rational_to_f64(x)),
-            ex.g.to_triangle(n).map(|x| rational_to_f64(x)),
+            ex.f.to_triangle(n).map(rational_to_f64),
+            ex.g.to_triangle(n).map(rational_to_f64),
         );
         for method in Method::ALL {
             let opts = SolveOptions {
