@@ -163,7 +163,16 @@ impl<P: Bivariate> System<P> {
     fn contract(&self, mut k: IBox) -> IBox {
         for _ in 0..8 {
             match self.krawczyk(k) {
-                Verdict::Unique(next) if width(next) < width(k) => k = next,
+                Verdict::Unique(next) if width(next) < width(k) => {
+                    // Quadratic convergence halves the width many times over
+                    // per step; a step that does not halve it has reached
+                    // the rounding floor, and further steps win ulps.
+                    let halved = width(next) <= 0.5 * width(k);
+                    k = next;
+                    if !halved {
+                        break;
+                    }
+                }
                 _ => break,
             }
         }
