@@ -805,30 +805,8 @@ const NEAR: f64 = 1e-5;
 /// a ~1e-5 neighbourhood with excluded gaps between them; one region says
 /// the same, soundly (a hull covers more), and readably.
 fn undecided_clusters(leaves: Vec<Found>) -> Vec<Cluster> {
-    let mut regions: Vec<Found> = group_overlapping(leaves).into_iter().map(hull_of).collect();
-    // Quadratic, so only for a sane count (each pass joins at least one pair).
-    if regions.len() <= 4096 {
-        let near = |a: &Found, b: &Found| {
-            let h = hull(a.bx, b.bx);
-            h[0].wid() <= NEAR && h[1].wid() <= NEAR
-        };
-        let mut joined = true;
-        while joined {
-            joined = false;
-            'outer: for i in 0..regions.len() {
-                for j in i + 1..regions.len() {
-                    if near(&regions[i], &regions[j]) {
-                        let b = regions.swap_remove(j);
-                        let a = regions.swap_remove(i);
-                        regions.push(hull_of(vec![a, b]));
-                        joined = true;
-                        break 'outer;
-                    }
-                }
-            }
-        }
-    }
-    regions
+    let regions: Vec<Found> = group_overlapping(leaves).into_iter().map(hull_of).collect();
+    join_near(regions)
         .into_iter()
         .map(|c| Cluster {
             bx: Box2::of(c.bx),
@@ -836,6 +814,48 @@ fn undecided_clusters(leaves: Vec<Found>) -> Vec<Cluster> {
             diameters: c.diameters,
         })
         .collect()
+}
+
+/// Joins regions whose joint hull is at most [`NEAR`] wide in both
+/// directions, until no two can be joined. Each pass sweeps the regions in
+/// order of their lower `u` and tries them against the joined regions that
+/// could still take them (lower `u` within `NEAR`), so thousands of leaves
+/// along a curve of near-roots cost about linear time per pass, not
+/// quadratic; a pass that joins nothing ends it.
+fn join_near(mut regions: Vec<Found>) -> Vec<Found> {
+    let near = |a: &IBox, b: &IBox| {
+        let h = hull(*a, *b);
+        h[0].wid() <= NEAR && h[1].wid() <= NEAR
+    };
+    loop {
+        let before = regions.len();
+        regions.sort_by(|a, b| a.bx[0].inf().total_cmp(&b.bx[0].inf()));
+        let mut out: Vec<Found> = Vec::with_capacity(regions.len());
+        let mut open: Vec<usize> = Vec::new();
+        for r in regions {
+            let lo = r.bx[0].inf();
+            // A joined region starting more than NEAR to the left of this
+            // one (and of every later one) can take none of them.
+            open.retain(|&k| out[k].bx[0].inf() >= lo - NEAR);
+            match open.iter().find(|&&k| near(&out[k].bx, &r.bx)) {
+                Some(&k) => {
+                    let m = &mut out[k];
+                    m.bx = hull(m.bx, r.bx);
+                    if r.diameters.len() > m.diameters.len() {
+                        m.diameters = r.diameters;
+                    }
+                }
+                None => {
+                    open.push(out.len());
+                    out.push(r);
+                }
+            }
+        }
+        regions = out;
+        if regions.len() == before {
+            return regions;
+        }
+    }
 }
 
 fn hull_of(group: Vec<Found>) -> Found {
@@ -1022,4 +1042,38 @@ pub fn solve_triangle_f64(f: &TriBezier<f64>, g: &TriBezier<f64>, opts: &SolveOp
         Probe::Undecided
     });
     run.leaves.iter().map(|l| l.tb.point_at([1.0 / 3.0; 3])).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::interval;
+
+    fn found(u: f64, v: f64, w: f64) -> Found {
+        Found {
+            bx: [interval(u, u + w), interval(v, v + w)],
+            diameters: vec![w],
+        }
+    }
+
+    /// Thousands of undecided leaves scattered along a 1e-5 sliver (a curve
+    /// of near-roots) become one region, in linear time; regions farther
+    /// apart than `NEAR` stay apart, and every input box stays covered.
+    #[test]
+    fn near_regions_join_at_scale() {
+        let mut leaves: Vec<Found> = (0..6000)
+            .map(|i| found(1e-12 * (i % 7) as f64, 1.5e-9 * i as f64, 1e-12))
+            .collect();
+        leaves.push(found(0.5, 0.5, 1e-9));
+        leaves.push(found(0.5 + 2.0 * NEAR, 0.5, 1e-9));
+        let inputs: Vec<IBox> = leaves.iter().map(|f| f.bx).collect();
+        let joined = join_near(leaves);
+        assert_eq!(joined.len(), 3, "{:?}", joined.iter().map(|f| f.bx).collect::<Vec<_>>());
+        for b in &inputs {
+            assert!(joined.iter().any(|f| b[0].subset(f.bx[0]) && b[1].subset(f.bx[1])));
+        }
+        for f in &joined {
+            assert!(f.bx[0].wid() <= NEAR && f.bx[1].wid() <= NEAR);
+        }
+    }
 }
