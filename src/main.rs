@@ -314,7 +314,7 @@ fn solution_json(sol: &Solution, secs: f64) -> Value {
         "clusters": clusters,
         "leftovers": leftovers,
         "stats": {
-            "tri_boxes": s.run.boxes, "clips": s.run.clips, "splits": s.run.splits,
+            "tri_boxes": s.run.boxes, "clips": s.run.clips, "role_swaps": s.run.role_swaps, "splits": s.run.splits,
             "sign_exclusions": s.run.sign_exclusions, "clip_exclusions": s.run.clip_exclusions,
             "krawczyk_calls": s.krawczyk_calls, "krawczyk_exclusions": s.krawczyk_exclusions,
             "leaves": s.leaves, "outside_domain": s.outside_domain, "max_level": s.max_level,

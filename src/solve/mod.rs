@@ -925,14 +925,29 @@ fn certify_groups<P: Bivariate>(
 }
 
 fn add_counters(a: &mut Counters, b: &Counters) {
-    a.boxes += b.boxes;
-    a.clips += b.clips;
-    a.splits += b.splits;
-    a.sign_exclusions += b.sign_exclusions;
-    a.clip_exclusions += b.clip_exclusions;
-    a.probes += b.probes;
-    a.probe_exclusions += b.probe_exclusions;
-    a.exact_restarts += b.exact_restarts;
+    // Destructured, so that a new counter cannot be forgotten here.
+    let Counters {
+        boxes,
+        clips,
+        splits,
+        sign_exclusions,
+        clip_exclusions,
+        probes,
+        probe_exclusions,
+        exact_restarts,
+        exact_boxes,
+        role_swaps,
+    } = *b;
+    a.boxes += boxes;
+    a.clips += clips;
+    a.splits += splits;
+    a.sign_exclusions += sign_exclusions;
+    a.clip_exclusions += clip_exclusions;
+    a.probes += probes;
+    a.probe_exclusions += probe_exclusions;
+    a.exact_restarts += exact_restarts;
+    a.exact_boxes += exact_boxes;
+    a.role_swaps += role_swaps;
 }
 
 fn local_box<S>(leaf: &Leaf<S>) -> IBox {
