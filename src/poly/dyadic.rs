@@ -13,7 +13,7 @@
 //! `2^E`; after the `n` steps of every blossom value the result is
 //! `G / (D 2^{nE})` exactly, returned unnormalized (no gcd).
 
-use super::triangle::{tri_index, tri_len, TriBezier};
+use super::triangle::{blossom_net, tri_index, tri_len, TriBezier};
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
@@ -48,26 +48,7 @@ pub fn subdivide_dyadic(p: &TriBezier<BigRational>, verts: &[[f64; 2]; 3]) -> Op
             [s, t, w]
         })
         .collect();
-    let mut out = vec![BigInt::zero(); tri_len(n)];
-    // Blossom f[V1^r V2^s V3^(n−r−s)]: r steps at V1, then s at V2, then the
-    // rest at V3 (as in `subdivide`).
-    let mut a = coeffs;
-    for r in 0..=n {
-        if r > 0 {
-            step(&mut a, n - r + 1, &bary[0]);
-        }
-        let mut b = a.clone();
-        for s in 0..=n - r {
-            if s > 0 {
-                step(&mut b, n - r - s + 1, &bary[1]);
-            }
-            let mut c = b.clone();
-            for m in (1..=n - r - s).rev() {
-                step(&mut c, m, &bary[2]);
-            }
-            out[tri_index(n, r, s)] = c.swap_remove(0);
-        }
-    }
+    let out = blossom_net(coeffs, n, BigInt::zero(), |net, m, k| step(net, m, &bary[k]));
     let den = d << (n as u64 * e as u64) as usize;
     Some(out.into_iter().map(|g| BigRational::new_raw(g, den.clone())).collect())
 }

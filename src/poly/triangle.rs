@@ -478,29 +478,43 @@ fn step_with<W: Arith>(
 
 /// [`TriBezier::subdivide`]: `g_rs = f[V1^r, V2^s, V3^(n−r−s)]`.
 fn subdivide_net<W: Arith>(coeffs: &[W], n: usize, verts: &[[W; 3]; 3]) -> Vec<W> {
-    let [v1, v2, v3] = verts;
-    let mut out = vec![W::zero_value(); tri_len(n)];
-    // Three nets, allocated once and stepped in place: A_r = r steps at V1
-    // (degree n − r), B_s = s steps at V2 of A_r, and the scratch copy of B_s
-    // that is evaluated at V3.
-    let mut a = coeffs.to_vec();
+    blossom_net(coeffs.to_vec(), n, W::zero_value(), |net, m, k| step(net, m, &verts[k]))
+}
+
+/// The blossoms `g_rs = f[V1^r, V2^s, V3^(n−r−s)]` of the degree-`n` net
+/// `coeffs`, in storage order, given a de Casteljau step `step(net, m, k)`
+/// that takes a net of degree `m` one step towards vertex `V(k+1)`: `r` steps
+/// at `V1`, then `s` at `V2`, then the rest at `V3`. Written once for every
+/// kernel ([`TriBezier::subdivide`], and the integer steps of the exact
+/// phase in `poly::dyadic`).
+pub(crate) fn blossom_net<T: Clone>(
+    coeffs: Vec<T>,
+    n: usize,
+    zero: T,
+    mut step: impl FnMut(&mut Vec<T>, usize, usize),
+) -> Vec<T> {
+    let mut out = vec![zero; tri_len(n)];
+    // Three nets, allocated once: A_r = r steps at V1 (degree n − r),
+    // B_s = s steps at V2 of A_r, and the scratch copy of B_s that is
+    // evaluated at V3.
+    let mut a = coeffs;
     let mut b = Vec::with_capacity(tri_len(n));
     let mut c = Vec::with_capacity(tri_len(n));
     for r in 0..=n {
         if r > 0 {
-            step(&mut a, n - r + 1, v1);
+            step(&mut a, n - r + 1, 0);
         }
         b.clone_from(&a);
         for s in 0..=n - r {
             if s > 0 {
-                step(&mut b, n - r - s + 1, v2);
+                step(&mut b, n - r - s + 1, 1);
             }
             let g = if s == n - r {
                 b[0].clone()
             } else {
                 c.clone_from(&b);
                 for m in (1..=n - r - s).rev() {
-                    step(&mut c, m, v3);
+                    step(&mut c, m, 2);
                 }
                 c[0].clone()
             };
