@@ -221,31 +221,54 @@ pub(crate) fn smallest_singular_left(j: [f64; 4]) -> Option<[f64; 2]> {
 
 /// Gaussian elimination with partial pivoting; `None` when a pivot is tiny
 /// relative to its row (numerically singular).
+fn solve3(a: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
+    gauss(a, b, Pivoting::Scaled(1e-10))
+}
+
+/// How [`gauss`] picks pivots and when it gives up.
+#[derive(Clone, Copy)]
+pub(crate) enum Pivoting {
+    /// Largest `|a_ic|` relative to the largest entry of row `i`; singular
+    /// when that ratio is below the threshold (or a row is 0 or not finite).
+    Scaled(f64),
+    /// Largest `|a_ic|`; singular when it is below the threshold.
+    Plain(f64),
+}
+
+/// Solves `a x = b` by Gaussian elimination with partial pivoting, in `f64`
+/// (the multipliers and fits that use it need good values, not proofs);
+/// `None` when numerically singular by `pivoting`'s test.
 // Row operations read one row while writing another: index loops are clearer.
 #[allow(clippy::needless_range_loop)]
-fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
-    let scale: Vec<f64> = a.iter().map(|r| r.iter().fold(0.0f64, |m, x| m.max(x.abs()))).collect();
-    if scale.iter().any(|&s| s == 0.0 || !s.is_finite()) {
-        return None;
-    }
-    for col in 0..3 {
-        let piv = (col..3).max_by(|&i, &j| (a[i][col] / scale[i]).abs().total_cmp(&(a[j][col] / scale[j]).abs()))?;
-        if (a[piv][col] / scale[piv]).abs() < 1e-10 {
+pub(crate) fn gauss<const N: usize>(mut a: [[f64; N]; N], mut b: [f64; N], pivoting: Pivoting) -> Option<[f64; N]> {
+    let (scale, tiny) = match pivoting {
+        Pivoting::Scaled(tiny) => {
+            let scale = a.map(|r| r.iter().fold(0.0f64, |m, x| m.max(x.abs())));
+            if scale.iter().any(|&s| s == 0.0 || !s.is_finite()) {
+                return None;
+            }
+            (scale, tiny)
+        }
+        Pivoting::Plain(tiny) => ([1.0; N], tiny),
+    };
+    for col in 0..N {
+        let piv = (col..N).max_by(|&i, &j| (a[i][col] / scale[i]).abs().total_cmp(&(a[j][col] / scale[j]).abs()))?;
+        if (a[piv][col] / scale[piv]).abs() < tiny {
             return None;
         }
         a.swap(col, piv);
         b.swap(col, piv);
-        for r in col + 1..3 {
+        for r in col + 1..N {
             let f = a[r][col] / a[col][col];
-            for k in col..3 {
+            for k in col..N {
                 a[r][k] -= f * a[col][k];
             }
             b[r] -= f * b[col];
         }
     }
-    let mut x = [0.0; 3];
-    for r in (0..3).rev() {
-        let s: f64 = (r + 1..3).map(|k| a[r][k] * x[k]).sum();
+    let mut x = [0.0; N];
+    for r in (0..N).rev() {
+        let s: f64 = (r + 1..N).map(|k| a[r][k] * x[k]).sum();
         x[r] = (b[r] - s) / a[r][r];
     }
     Some(x)

@@ -39,6 +39,7 @@
 use super::fatline::{FatLineClip, Strip};
 use super::{at, Shape, STACK};
 use crate::scalar::iv::{down, up, Iv};
+use crate::solve::method::{gauss, Pivoting};
 
 /// A fat conic `|q(s, t)| ≤ δ`, `q = A + B s + C t + D s² + E s t + F t²`.
 #[derive(Clone, Copy, Debug)]
@@ -89,7 +90,7 @@ impl Conic {
                 ata[a][a] = 1.0;
             }
         }
-        let k = solve6(ata, atb)?;
+        let k = gauss(ata, atb, Pivoting::Plain(1e-300))?;
         if !k.iter().all(|x| x.is_finite()) {
             return None;
         }
@@ -331,32 +332,6 @@ fn spans_of(cands: &[[Iv; 2]], strip: Strip, conic: Conic) -> FatLineClip {
         return FatLineClip::Empty;
     }
     FatLineClip::Spans(span.map(|(lo, hi)| (lo.max(0.0), hi.min(1.0))))
-}
-
-/// Gaussian elimination with partial pivoting; `None` when singular.
-#[allow(clippy::needless_range_loop)]
-fn solve6(mut a: [[f64; 6]; 6], mut b: [f64; 6]) -> Option<[f64; 6]> {
-    for col in 0..6 {
-        let piv = (col..6).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
-        if a[piv][col].abs() < 1e-300 {
-            return None;
-        }
-        a.swap(col, piv);
-        b.swap(col, piv);
-        for r in col + 1..6 {
-            let f = a[r][col] / a[col][col];
-            for k in col..6 {
-                a[r][k] -= f * a[col][k];
-            }
-            b[r] -= f * b[col];
-        }
-    }
-    let mut x = [0.0; 6];
-    for r in (0..6).rev() {
-        let s: f64 = (r + 1..6).map(|k| a[r][k] * x[k]).sum();
-        x[r] = (b[r] - s) / a[r][r];
-    }
-    Some(x)
 }
 
 #[cfg(test)]
