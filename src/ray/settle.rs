@@ -40,19 +40,23 @@ fn exact_system(patch: &Patch, ray: &Ray) -> Option<ExactSystem> {
         }
         _ => return None,
     };
-    let q = |x: f64| Q::from_float(x);
     let hom = points
         .iter()
         .enumerate()
-        .map(|(idx, p)| {
-            let w = match weights {
-                Some(w) => q(w[idx])?,
-                None => Q::one(),
-            };
-            Some([&w * q(p.x)?, &w * q(p.y)?, &w * q(p.z)?, w])
-        })
+        .map(|(idx, &p)| exact_hom(p, weights.map(|w| w[idx])))
         .collect::<Option<Vec<_>>>()?;
     system_of_net(shape, &hom, ray)
+}
+
+/// The homogeneous control point `(w x, w y, w z, w)` exactly (`w = 1`
+/// without a weight); `None` if a value is not finite.
+pub(super) fn exact_hom(p: DVec3, weight: Option<f64>) -> Option<[Q; 4]> {
+    let q = |x: f64| Q::from_float(x);
+    let w = match weight {
+        Some(w) => q(w)?,
+        None => Q::one(),
+    };
+    Some([&w * q(p.x)?, &w * q(p.y)?, &w * q(p.z)?, w])
 }
 
 /// The exact system of a homogeneous net `(w x, w y, w z, w)` (in `shape`'s

@@ -10,6 +10,7 @@
 //! control points `(w x, w y, w z, w)`.
 
 use super::{BezierPiece, BsplineSurface};
+use crate::ray::settle::exact_hom;
 use num_rational::BigRational;
 use num_traits::{One, Zero};
 
@@ -28,12 +29,7 @@ pub(super) fn exact_piece_net(s: &BsplineSurface, piece: &BezierPiece) -> Option
     let vk: Vec<Q> = s.knots_v.iter().map(|&x| exact(x)).collect::<Option<_>>()?;
     let hom = |i: usize, j: usize| -> Option<Hom> {
         let k = i * nv + j;
-        let pt = s.points[k];
-        let w = match &s.weights {
-            Some(w) => exact(w[k])?,
-            None => Q::one(),
-        };
-        Some([&w * exact(pt.x)?, &w * exact(pt.y)?, &w * exact(pt.z)?, w])
+        exact_hom(s.points[k], s.weights.as_ref().map(|w| w[k]))
     };
     let args = |lo: &Q, hi: &Q, deg: usize, i: usize| -> Vec<Q> {
         (0..deg)
