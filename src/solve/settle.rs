@@ -29,7 +29,7 @@
 use super::degenerate::gcd;
 use super::Box2;
 use crate::error::{Error, Result};
-use crate::poly::{tri_index, tri_len};
+use crate::poly::{tri_index, tri_len, Direction, TensorBezier, TriBezier};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
@@ -109,7 +109,65 @@ pub struct ExactSystem {
     f: [Vec<Q>; 2],
     h: Option<Vec<Q>>,
     /// `∂f_k/∂u`, `∂f_k/∂v` (shapes one degree lower in that variable).
-    df: [[Vec<Q>; 2]; 2],
+    df: [[Poly; 2]; 2],
+}
+
+/// One polynomial of an [`ExactSystem`] as the BB type of its shape.
+#[derive(Clone, Debug)]
+enum Poly {
+    Triangle(TriBezier<Q>),
+    Tensor(Box<TensorBezier<Q>>),
+}
+
+impl Poly {
+    /// `c` in `shape`'s storage order (its length checked by the caller).
+    fn new(shape: Shape, c: Vec<Q>) -> Self {
+        match shape {
+            Shape::Triangle(n) => Poly::Triangle(TriBezier::new(n, c).expect("length checked")),
+            Shape::Tensor(m, n) => {
+                Poly::Tensor(Box::new(TensorBezier::on_unit_square(m, n, c).expect("length checked")))
+            }
+        }
+    }
+
+    /// `∂/∂u`, `∂/∂v`, exactly.
+    fn derivs(&self) -> [Poly; 2] {
+        match self {
+            Poly::Triangle(p) => [Poly::Triangle(p.deriv_u()), Poly::Triangle(p.deriv_v())],
+            Poly::Tensor(p) => [Direction::U, Direction::V].map(|d| Poly::Tensor(Box::new(p.deriv(d)))),
+        }
+    }
+
+    fn shape(&self) -> Shape {
+        match self {
+            Poly::Triangle(p) => Shape::Triangle(p.degree()),
+            Poly::Tensor(p) => {
+                let (m, n) = p.degree();
+                Shape::Tensor(m, n)
+            }
+        }
+    }
+
+    fn coeffs(&self) -> &[Q] {
+        match self {
+            Poly::Triangle(p) => p.coeffs(),
+            Poly::Tensor(p) => p.coeffs(),
+        }
+    }
+
+    /// An enclosure over the box `x`.
+    fn enclose(&self, x: &[RI; 2]) -> RI {
+        eval(self.shape(), self.coeffs(), x)
+    }
+
+    /// The value at `(u, v)` in `f64` (an estimate).
+    fn eval_f64(&self, u: f64, v: f64) -> f64 {
+        let to_f64 = |x: &Q| x.to_f64().unwrap_or(f64::NAN);
+        match self {
+            Poly::Triangle(p) => p.map(to_f64).eval(u, v),
+            Poly::Tensor(p) => p.map(to_f64).eval(u, v),
+        }
+    }
 }
 
 impl ExactSystem {
@@ -122,7 +180,10 @@ impl ExactSystem {
                 "{shape:?} needs {len} coefficients per polynomial"
             )));
         }
-        let df = [derivs(shape, &f), derivs(shape, &g)];
+        let df = [
+            Poly::new(shape, f.clone()).derivs(),
+            Poly::new(shape, g.clone()).derivs(),
+        ];
         Ok(Self {
             shape,
             f: [f, g],
@@ -134,10 +195,7 @@ impl ExactSystem {
     /// The Jacobian `[f_u, f_v, g_u, g_v]` at `(u, v)`, in `f64` (an
     /// estimate, for deciding whether an exact test is worth its cost).
     pub fn jacobian_f64(&self, u: f64, v: f64) -> [f64; 4] {
-        let d = |k: usize, dir: usize| {
-            let c: Vec<f64> = self.df[k][dir].iter().map(|x| x.to_f64().unwrap_or(f64::NAN)).collect();
-            eval_f64(self.shape, &c, dir, u, v)
-        };
+        let d = |k: usize, dir: usize| self.df[k][dir].eval_f64(u, v);
         [d(0, 0), d(0, 1), d(1, 0), d(1, 1)]
     }
 
@@ -381,9 +439,9 @@ impl ExactSystem {
         let mid = [x[0].mid_rounded(bits), x[1].mid_rounded(bits)];
         let pt = [RI::point(mid[0].clone()), RI::point(mid[1].clone())];
         let fm = [0, 1].map(|k| eval(self.shape, &self.f[k], &pt).lo);
-        let jm: [[Q; 2]; 2] = [0, 1].map(|k| [0, 1].map(|d| eval_deriv(self.shape, &self.df[k][d], d, &pt).lo));
+        let jm: [[Q; 2]; 2] = [0, 1].map(|k| [0, 1].map(|d| self.df[k][d].enclose(&pt).lo));
         let y = inverse(&jm, bits)?;
-        let jx: [[RI; 2]; 2] = [0, 1].map(|k| [0, 1].map(|d| eval_deriv(self.shape, &self.df[k][d], d, x)));
+        let jx: [[RI; 2]; 2] = [0, 1].map(|k| [0, 1].map(|d| self.df[k][d].enclose(x)));
         let dx = [x[0].sub_point(&mid[0]), x[1].sub_point(&mid[1])];
         let mut out: [RI; 2] = [RI::point(Q::zero()), RI::point(Q::zero())];
         for (i, o) in out.iter_mut().enumerate() {
@@ -488,104 +546,6 @@ impl RI {
     fn round_out(&self, bits: u64) -> Self {
         let s = Q::from_integer(BigInt::one() << bits);
         Self::new((&self.lo * &s).floor() / &s, (&self.hi * &s).ceil() / &s)
-    }
-}
-
-/// `∂c/∂u` (`d = 0`) or `∂c/∂v` (`d = 1`) coefficients, exactly.
-fn derivs(shape: Shape, c: &[Q]) -> [Vec<Q>; 2] {
-    match shape {
-        Shape::Tensor(m, n) => {
-            let at = |i: usize, j: usize| &c[i * (n + 1) + j];
-            let (qm, qn) = (Q::from_integer(m.into()), Q::from_integer(n.into()));
-            let du = (0..m)
-                .flat_map(|i| (0..=n).map(move |j| (i, j)))
-                .map(|(i, j)| &qm * (at(i + 1, j) - at(i, j)))
-                .collect();
-            let dv = (0..=m)
-                .flat_map(|i| (0..n).map(move |j| (i, j)))
-                .map(|(i, j)| &qn * (at(i, j + 1) - at(i, j)))
-                .collect();
-            [du, dv]
-        }
-        Shape::Triangle(n) => {
-            let qn = Q::from_integer(n.into());
-            let at = |i: usize, j: usize| &c[tri_index(n, i, j)];
-            let mut du = Vec::new();
-            let mut dv = Vec::new();
-            for j in 0..n {
-                for i in 0..n - j {
-                    du.push(&qn * (at(i + 1, j) - at(i, j)));
-                    dv.push(&qn * (at(i, j + 1) - at(i, j)));
-                }
-            }
-            [du, dv]
-        }
-    }
-}
-
-/// A derivative's enclosure over `x` (its shape is one degree lower in `d`).
-fn eval_deriv(shape: Shape, c: &[Q], d: usize, x: &[RI; 2]) -> RI {
-    let lower = match shape {
-        Shape::Tensor(m, n) if d == 0 => Shape::Tensor(m.saturating_sub(1), n),
-        Shape::Tensor(m, n) => Shape::Tensor(m, n.saturating_sub(1)),
-        Shape::Triangle(n) => Shape::Triangle(n.saturating_sub(1)),
-    };
-    if c.is_empty() {
-        return RI::point(Q::zero());
-    }
-    eval(lower, c, x)
-}
-
-/// A derivative's value at `(u, v)` in `f64` (its shape is one degree lower
-/// in `d`), by de Casteljau.
-fn eval_f64(shape: Shape, c: &[f64], d: usize, u: f64, v: f64) -> f64 {
-    if c.is_empty() {
-        return 0.0;
-    }
-    match shape {
-        Shape::Tensor(m, n) => {
-            let (m, n) = if d == 0 {
-                (m.saturating_sub(1), n)
-            } else {
-                (m, n.saturating_sub(1))
-            };
-            let mut col: Vec<f64> = (0..=m)
-                .map(|i| {
-                    let mut row = c[i * (n + 1)..(i + 1) * (n + 1)].to_vec();
-                    for r in (1..=n).rev() {
-                        for j in 0..r {
-                            row[j] += v * (row[j + 1] - row[j]);
-                        }
-                    }
-                    row[0]
-                })
-                .collect();
-            for r in (1..=m).rev() {
-                for i in 0..r {
-                    col[i] += u * (col[i + 1] - col[i]);
-                }
-            }
-            col[0]
-        }
-        Shape::Triangle(n) => {
-            let n = n.saturating_sub(1);
-            let w = 1.0 - u - v;
-            let mut net = c.to_vec();
-            for m in (1..=n).rev() {
-                let mut next = Vec::with_capacity(m * (m + 1) / 2);
-                for j in 0..m {
-                    for i in 0..m - j {
-                        next.push(
-                            u * net[tri_index(m, i + 1, j)]
-                                + v * net[tri_index(m, i, j + 1)]
-                                + w * net[tri_index(m, i, j)],
-                        );
-                    }
-                }
-                net = next;
-            }
-            net[0]
-        }
     }
 }
 
