@@ -433,12 +433,14 @@ fn finish_exact(mut sol: Solution, sys: &settle::ExactSystem) -> Solution {
         let small = c.bx.u[1] - c.bx.u[0] <= EXACT_CERTIFY_BELOW && c.bx.v[1] - c.bx.v[0] <= EXACT_CERTIFY_BELOW;
         // A (nearly) singular Jacobian at the centre: a multiple root, or
         // roots closer than these tests separate; not worth the exact cost.
-        let j = sys.jacobian_f64(0.5 * (c.bx.u[0] + c.bx.u[1]), 0.5 * (c.bx.v[0] + c.bx.v[1]));
-        let det = j[0] * j[3] - j[1] * j[2];
-        let scale = (j[0] * j[0] + j[1] * j[1]).sqrt() * (j[2] * j[2] + j[3] * j[3]).sqrt();
-        // (NaN counts as singular.)
-        let near_singular = det.abs().partial_cmp(&(1e-11 * scale)) != Some(std::cmp::Ordering::Greater);
-        if c.reason != ClusterReason::KrawczykUndecided || !small || near_singular {
+        let near_singular = || {
+            let j = sys.jacobian_f64(0.5 * (c.bx.u[0] + c.bx.u[1]), 0.5 * (c.bx.v[0] + c.bx.v[1]));
+            let det = j[0] * j[3] - j[1] * j[2];
+            let scale = (j[0] * j[0] + j[1] * j[1]).sqrt() * (j[2] * j[2] + j[3] * j[3]).sqrt();
+            // (NaN counts as singular.)
+            det.abs().partial_cmp(&(1e-11 * scale)) != Some(std::cmp::Ordering::Greater)
+        };
+        if c.reason != ClusterReason::KrawczykUndecided || !small || near_singular() {
             kept.push(c);
             continue;
         }

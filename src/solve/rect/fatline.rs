@@ -211,15 +211,6 @@ pub(super) fn fat_line_spans(c: &[Iv], sh: Shape) -> FatLineClip {
 mod tests {
     use super::*;
 
-    fn shape(m: usize, n: usize) -> Shape {
-        Shape {
-            m,
-            n,
-            len: (m + 1) * (n + 1),
-            polys: 2,
-        }
-    }
-
     /// Bilinear coefficients of `a + b s + c t` (its values at the corners).
     fn linear(a: f64, b: f64, c: f64) -> Vec<Iv> {
         let mut out = Vec::new();
@@ -236,7 +227,7 @@ mod tests {
         // s + t = 0.7 and s − t = 0.1 meet at (0.4, 0.3).
         let mut c = linear(-0.7, 1.0, 1.0);
         c.extend(linear(-0.1, 1.0, -1.0));
-        let FatLineClip::Spans(sp) = fat_line_spans(&c, shape(1, 1)) else {
+        let FatLineClip::Spans(sp) = fat_line_spans(&c, Shape::pair(1, 1)) else {
             panic!()
         };
         assert!(sp[0].0 <= 0.4 && 0.4 <= sp[0].1 && sp[0].1 - sp[0].0 < 1e-14, "{sp:?}");
@@ -248,14 +239,14 @@ mod tests {
         // s + t = 1.9 and s − t = 0.5 meet at (1.2, 0.7), right of the box.
         let mut c = linear(-1.9, 1.0, 1.0);
         c.extend(linear(-0.5, 1.0, -1.0));
-        assert_eq!(fat_line_spans(&c, shape(1, 1)), FatLineClip::Empty);
+        assert_eq!(fat_line_spans(&c, Shape::pair(1, 1)), FatLineClip::Empty);
     }
 
     #[test]
     fn parallel_lines_fall_back() {
         let mut c = linear(-0.5, 1.0, 1.0);
         c.extend(linear(-0.6, 2.0, 2.0));
-        assert_eq!(fat_line_spans(&c, shape(1, 1)), FatLineClip::Parallel);
+        assert_eq!(fat_line_spans(&c, Shape::pair(1, 1)), FatLineClip::Parallel);
     }
 
     #[test]
@@ -274,7 +265,7 @@ mod tests {
         let mut c = f;
         c.extend(g);
         let r = 0.35f64.sqrt();
-        let FatLineClip::Spans(sp) = fat_line_spans(&c, shape(2, 1)) else {
+        let FatLineClip::Spans(sp) = fat_line_spans(&c, Shape::pair(2, 1)) else {
             panic!()
         };
         for d in 0..2 {

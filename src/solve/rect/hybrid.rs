@@ -338,20 +338,11 @@ fn spans_of(cands: &[[Iv; 2]], strip: Strip, conic: Conic) -> FatLineClip {
 mod tests {
     use super::*;
 
-    fn shape(m: usize, n: usize) -> Shape {
-        Shape {
-            m,
-            n,
-            len: (m + 1) * (n + 1),
-            polys: 2,
-        }
-    }
-
     #[test]
     fn a_conic_is_fitted_exactly() {
         // g = s² + st − t (bidegree (2, 2)): its own coefficients, so δ ≈ 0.
         let (m, n) = (2, 2);
-        let sh = shape(m, n);
+        let sh = Shape::pair(m, n);
         let g: Vec<Iv> = (0..=m)
             .flat_map(|i| (0..=n).map(move |j| (i, j)))
             .map(|(i, j)| {
@@ -390,7 +381,7 @@ mod tests {
         // f = s − t (bilinear), g = (s − ½)² + (t − ½)² − 1/8 at bidegree (2, 2):
         // they cross at s = t = ½ ± ¼.
         let (m, n) = (2, 2);
-        let sh = shape(m, n);
+        let sh = Shape::pair(m, n);
         let f: Vec<Iv> = (0..=m)
             .flat_map(|i| (0..=n).map(move |j| Iv::point(i as f64 / 2.0 - j as f64 / 2.0)))
             .collect();

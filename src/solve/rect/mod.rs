@@ -328,7 +328,7 @@ pub(crate) fn solve_rect_iv(p: RectProblem, opts: &RectOptions) -> Result<RectSo
     // The objective is not carried through the subdivision: it is bounded
     // over a box only where a query needs it (a certified root; a box that
     // Nearest might prune), from the domain's coefficients.
-    let shape = Shape { m, n, len, polys: 2 };
+    let shape = Shape::pair(m, n);
     let mut buf = Vec::with_capacity(shape.polys * len);
     buf.extend_from_slice(&p.f);
     buf.extend_from_slice(&p.g);
@@ -382,6 +382,18 @@ struct Shape {
     n: usize,
     len: usize,
     polys: usize,
+}
+
+impl Shape {
+    /// The system `f, g` of bidegree `(m, n)`.
+    fn pair(m: usize, n: usize) -> Self {
+        Shape {
+            m,
+            n,
+            len: (m + 1) * (n + 1),
+            polys: 2,
+        }
+    }
 }
 
 /// A box: the coefficients of every polynomial on it, its endpoints (each an
