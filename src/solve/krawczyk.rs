@@ -27,6 +27,12 @@ pub trait Bivariate: Clone {
     fn value(&self, u: Interval, v: Interval) -> Interval;
     /// `[∂/∂u, ∂/∂v]`.
     fn partials(&self) -> [Self; 2];
+    /// The same polynomial with its coefficients' midpoints, in `f64`.
+    type Mid: Clone + std::fmt::Debug;
+    /// [`Bivariate::Mid`] of `self`.
+    fn mid(&self) -> Self::Mid;
+    /// The midpoint polynomial's value at `(u, v)`, in `f64` (no bound).
+    fn mid_value(p: &Self::Mid, u: f64, v: f64) -> f64;
 }
 
 impl Bivariate for TriBezier<Interval> {
@@ -36,6 +42,13 @@ impl Bivariate for TriBezier<Interval> {
     fn partials(&self) -> [Self; 2] {
         [self.deriv_u(), self.deriv_v()]
     }
+    type Mid = TriBezier<f64>;
+    fn mid(&self) -> TriBezier<f64> {
+        self.map(|c| c.mid())
+    }
+    fn mid_value(p: &TriBezier<f64>, u: f64, v: f64) -> f64 {
+        p.eval(u, v)
+    }
 }
 
 impl Bivariate for TensorBezier<Interval> {
@@ -44,6 +57,13 @@ impl Bivariate for TensorBezier<Interval> {
     }
     fn partials(&self) -> [Self; 2] {
         [self.deriv(Direction::U), self.deriv(Direction::V)]
+    }
+    type Mid = TensorBezier<f64>;
+    fn mid(&self) -> TensorBezier<f64> {
+        self.map(|c| c.mid())
+    }
+    fn mid_value(p: &TensorBezier<f64>, u: f64, v: f64) -> f64 {
+        p.eval(u, v)
     }
 }
 
@@ -55,10 +75,13 @@ pub type IBox = [Interval; 2];
 /// de Casteljau at barycentric `(u, v, 1 − u − v)`, tensor ones row by row;
 /// both extend beyond their domain).
 #[derive(Clone, Debug)]
-pub struct System<P = TriBezier<Interval>> {
+pub struct System<P: Bivariate = TriBezier<Interval>> {
     f: P,
     g: P,
     jac: [P; 4],
+    /// The Jacobian's entries with midpoint coefficients: the
+    /// preconditioner `Y` only has to be some real matrix near `F'(x̃)⁻¹`.
+    jac_mid: [P::Mid; 4],
 }
 
 /// What a Krawczyk step proves about a box.
@@ -79,10 +102,12 @@ impl<P: Bivariate> System<P> {
     pub fn new(f: P, g: P) -> Self {
         let [fu, fv] = f.partials();
         let [gu, gv] = g.partials();
+        let jac = [fu, fv, gu, gv];
         Self {
             f,
             g,
-            jac: [fu, fv, gu, gv],
+            jac_mid: jac.each_ref().map(P::mid),
+            jac,
         }
     }
 
@@ -104,7 +129,7 @@ impl<P: Bivariate> System<P> {
         let xm = [point(mid[0]), point(mid[1])];
         let fx = self.value(xm);
         let j = self.jac.each_ref().map(|p| Self::eval(p, x));
-        let jm = self.jac.each_ref().map(|p| Self::eval(p, xm).mid());
+        let jm = self.jac_mid.each_ref().map(|p| P::mid_value(p, mid[0], mid[1]));
         let Some(y) = inverse2(jm) else {
             return Verdict::Undecided(x);
         };

@@ -479,9 +479,15 @@ impl Div for GeoIv {
         if !exact_safe2(self.0, y.0) {
             return Self::of_iv(self.iv().div(y.iv()));
         }
-        // −lo = max(−x/t) rounded up: the quotients of −x by the ends.
-        let neg_lo = div_up(-a, c).max(div_up(-a, d)).max(div_up(-b, c).max(div_up(-b, d)));
-        let hi = div_up(a, c).max(div_up(a, d)).max(div_up(b, c).max(div_up(b, d)));
+        // x / y = (−x) / (−y): make the divisor positive, `[c, d]` with c > 0.
+        let (a, b, c, d) = if c > 0.0 { (a, b, c, d) } else { (-b, -a, -d, -c) };
+        // For y > 0, x/y is increasing in x and, for fixed x, decreasing in y
+        // when x ≥ 0 and increasing when x < 0: the low end is a/d (a ≥ 0) or
+        // a/c, the high end b/c (b ≥ 0) or b/d. Rounding is monotone, so these
+        // two quotients are the extremes of all four, as inari's (rounded
+        // outward: −lo = RU(−a / ·)).
+        let neg_lo = div_up(-a, select(a >= 0.0, d, c));
+        let hi = div_up(b, select(b >= 0.0, c, d));
         Self([neg_lo, hi])
     }
 }
