@@ -194,7 +194,9 @@ impl<P: Bivariate> System<P> {
                     // the rounding floor, and further steps win ulps.
                     let halved = width(next) <= 0.5 * width(k);
                     k = next;
-                    if !halved {
+                    // A box a few ulps wide is at the floor already: the next
+                    // step could not halve it (saves that step's evaluations).
+                    if !halved || at_rounding_floor(k) {
                         break;
                     }
                 }
@@ -203,6 +205,12 @@ impl<P: Bivariate> System<P> {
         }
         k
     }
+}
+
+/// Each side of `x` is at most 16 ulps of its largest coordinate (and of 1)
+/// wide: Krawczyk's rounding floor for a well-conditioned root.
+fn at_rounding_floor(x: IBox) -> bool {
+    x.iter().all(|c| c.wid() <= 16.0 * f64::EPSILON * c.mag().max(1.0))
 }
 
 /// The larger side of a box.
