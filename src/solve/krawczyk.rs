@@ -280,3 +280,60 @@ fn inverse2(m: [f64; 4]) -> Option<[f64; 4]> {
     }
     Some([m[3] / det, -m[1] / det, -m[2] / det, m[0] / det])
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::parse_polynomial;
+    use crate::scalar::{interval, Scalar};
+    use num_rational::BigRational;
+
+    fn system(f: &str, g: &str) -> System {
+        let conv = |s: &str| parse_polynomial(s).unwrap().to_triangle(3).map(Interval::from_rational);
+        System::new(conv(f), conv(g))
+    }
+
+    fn holds(x: Interval, q: &BigRational) -> bool {
+        let r = |v: f64| BigRational::from_float(v).unwrap();
+        r(x.inf()) <= *q && *q <= r(x.sup())
+    }
+
+    /// The root (1/3, 1/7) is not a float: the certified box must still hold
+    /// it exactly, be a few ulps wide (the Newton jump), and lie in the box
+    /// the first Krawczyk step proved.
+    #[test]
+    fn certified_box_holds_the_exact_root_and_is_tight() {
+        let sys = system("(3*u - 1)*(u + 1) + (7*v - 1)^3", "7*v - 1 + (3*u - 1)*v^2");
+        let (u, v) = (
+            BigRational::new(1.into(), 3.into()),
+            BigRational::new(1.into(), 7.into()),
+        );
+        // A box of a probe's size (interval de Casteljau overestimates the
+        // Jacobian on wide boxes: the cube's coefficients reach 343).
+        let x0 = [interval(0.330, 0.337), interval(0.140, 0.146)];
+        let verdict = sys.certify(x0);
+        let Verdict::Unique(k) = verdict else {
+            panic!("simple root not certified: {verdict:?}")
+        };
+        assert!(holds(k[0], &u) && holds(k[1], &v), "{k:?}");
+        assert!(width(k) < 1e-14, "{k:?}");
+        let Verdict::Unique(first) = sys.krawczyk(x0.map(|c| inflate(c, 0.1))) else {
+            panic!("first step")
+        };
+        assert!(k[0].subset(first[0]) && k[1].subset(first[1]));
+    }
+
+    /// A jump is refused when Newton leaves the enclosure: here `k` holds
+    /// the root 0.5 of the first equation's factor but Newton is started
+    /// from a box around the other root's basin.
+    #[test]
+    fn newton_jump_stays_inside_the_enclosure() {
+        let sys = system("(2*u - 1)*(4*u - 3)", "v - 1/4");
+        // k around u = 0.75 … 0.8: Newton from 0.775 goes to 0.75, inside.
+        let k = [interval(0.74, 0.81), interval(0.2, 0.3)];
+        let b = sys.newton_jump(k).expect("root 0.75 inside k");
+        assert!(b[0].contains(0.75) && b[1].contains(0.25));
+        // k = [0.6, 0.7] holds no root; the jump must not report one outside.
+        assert!(sys.newton_jump([interval(0.6, 0.7), interval(0.2, 0.3)]).is_none());
+    }
+}
