@@ -126,16 +126,22 @@ impl<P: Bivariate> System<P> {
 
     /// One Krawczyk step on `x`.
     pub fn krawczyk(&self, x: IBox) -> Verdict {
+        self.step(x).0
+    }
+
+    /// [`System::krawczyk`], with `K(X)` itself (not intersected with `X`)
+    /// when it could be computed.
+    fn step(&self, x: IBox) -> (Verdict, Option<IBox>) {
         let mid = [x[0].mid(), x[1].mid()];
         if !(mid[0].is_finite() && mid[1].is_finite()) {
-            return Verdict::Undecided(x);
+            return (Verdict::Undecided(x), None);
         }
         let xm = [point(mid[0]), point(mid[1])];
         let fx = self.value(xm);
         let j = self.jac.each_ref().map(|p| Self::eval(p, x));
         let jm = self.jac_mid.each_ref().map(|p| P::mid_value(p, mid[0], mid[1]));
         let Some(y) = inverse2(jm) else {
-            return Verdict::Undecided(x);
+            return (Verdict::Undecided(x), None);
         };
         let y = y.map(point);
         // K = x̃ − Y F(x̃) + (I − Y J) (X − x̃)
@@ -153,9 +159,9 @@ impl<P: Bivariate> System<P> {
             xm[1] - yf[1] + m[2] * d[0] + m[3] * d[1],
         ];
         if k.iter().any(|c| c.is_empty()) {
-            return Verdict::Undecided(x);
+            return (Verdict::Undecided(x), None);
         }
-        if k[0].interior(x[0]) && k[1].interior(x[1]) {
+        let verdict = if k[0].interior(x[0]) && k[1].interior(x[1]) {
             Verdict::Unique(k)
         } else {
             let meet = [k[0].intersection(x[0]), k[1].intersection(x[1])];
@@ -164,7 +170,8 @@ impl<P: Bivariate> System<P> {
             } else {
                 Verdict::Undecided(meet)
             }
-        }
+        };
+        (verdict, Some(k))
     }
 
     /// Tries to prove that the box `x0` holds exactly one root, by Krawczyk
@@ -174,14 +181,28 @@ impl<P: Bivariate> System<P> {
     pub fn certify(&self, x0: IBox) -> Verdict {
         let mut x = x0.map(|c| inflate(c, 0.1));
         for _ in 0..10 {
-            match self.krawczyk(x) {
+            let (verdict, raw) = self.step(x);
+            match verdict {
                 Verdict::Unique(k) => return Verdict::Unique(self.contract(k)),
                 Verdict::NoRoot => return Verdict::NoRoot,
-                Verdict::Undecided(k) => {
-                    // Grow around the hull of the candidate and the original box,
-                    // tripling: an ill-conditioned root (condition c) needs a box
-                    // about c times the rounding of F before K(X) fits inside.
-                    x = [0, 1].map(|i| inflate(k[i].convex_hull(x0[i]), 1.0));
+                Verdict::Undecided(meet) => {
+                    // Grow around the hull of K(X) and the original box,
+                    // doubling it: an ill-conditioned root (condition c) needs
+                    // a box about c times the rounding of F before K(X) fits
+                    // inside. K(X) itself, not K(X) ∩ X: the intersection never
+                    // leaves X, so the box could only triple per step and a
+                    // leaf at eps (1e-15 wide) never reached the 1e-9 that a
+                    // root of condition 1e7 needs. K(X) is capped at `x0`
+                    // ± 1e-6 (relative beyond 1), which keeps a wild K(X) from
+                    // swallowing other roots.
+                    let raw = raw.unwrap_or(meet);
+                    x = [0, 1].map(|i| {
+                        let cap = 1e-6 * x0[i].mag().max(1.0);
+                        let reach = crate::scalar::interval(x0[i].inf() - cap, x0[i].sup() + cap);
+                        let grown = raw[i].intersection(reach);
+                        let grown = if grown.is_empty() { meet[i] } else { grown };
+                        inflate(grown.convex_hull(x0[i]), 1.0)
+                    });
                 }
             }
         }

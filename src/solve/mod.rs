@@ -424,8 +424,11 @@ const EXACT_CERTIFY_MAX: usize = 24;
 /// settle at once (two roots 1e-9 apart share one): if every piece is
 /// proven to hold one simple root or none, the region is replaced by those
 /// roots (a root whose box overlaps another root's stays undecided: it could
-/// be the same root); otherwise it stays. Then every certified root on the
-/// boundary is settled ([`settle_boundary`]).
+/// be the same root); otherwise it stays. The regions arrive as the driver
+/// left them ([`touching_regions`]), so two close roots in two regions are
+/// retried one by one; the regions left are then joined ([`join_undecided`]).
+/// Then every certified root on the boundary is settled
+/// ([`settle_boundary`]).
 fn finish_exact(mut sol: Solution, sys: &settle::ExactSystem) -> Solution {
     let mut kept = Vec::with_capacity(sol.clusters.len());
     let mut budget = EXACT_CERTIFY_MAX;
@@ -475,7 +478,7 @@ fn finish_exact(mut sol: Solution, sys: &settle::ExactSystem) -> Solution {
     }
     sol.clusters = kept;
     sol.roots.sort_by(|a, b| a.u.total_cmp(&b.u).then(a.v.total_cmp(&b.v)));
-    settle_boundary(sol, sys)
+    settle_boundary(join_undecided(sol), sys)
 }
 
 /// Certifies the region `bx` in exact arithmetic, bisecting it up to
@@ -580,7 +583,7 @@ pub fn solve_triangle(f: &TriBezier<Interval>, g: &TriBezier<Interval>, opts: &S
         (Some(a), Some(b)) => Some([a, b]),
         _ => None,
     };
-    Ok(solve_pieces(
+    Ok(join_undecided(solve_pieces(
         vec![Piece {
             f,
             g,
@@ -590,7 +593,7 @@ pub fn solve_triangle(f: &TriBezier<Interval>, g: &TriBezier<Interval>, opts: &S
         &global,
         Domain::Triangle,
         opts,
-    ))
+    )))
 }
 
 /// The exact polynomial of a point-interval input (its coefficients are
@@ -626,7 +629,7 @@ pub fn solve_square(f: &TensorBezier<Interval>, g: &TensorBezier<Interval>, opts
     let (m, n) = f.degree();
     let (p, q) = g.degree();
     let (f, g) = (f.elevate(m.max(p), n.max(q))?, g.elevate(m.max(p), n.max(q))?);
-    square_pieces(&f, &g, None, opts)
+    square_pieces(&f, &g, None, opts).map(join_undecided)
 }
 
 type ExactHalves = ([TriBezier<BigRational>; 2], [TriBezier<BigRational>; 2]);
@@ -750,7 +753,7 @@ fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &Solv
         }
     }
     out_roots.sort_by(|a, b| a.u.total_cmp(&b.u).then(a.v.total_cmp(&b.v)));
-    let clusters = undecided_clusters(clusters).into_iter().chain(strips).collect();
+    let clusters = touching_regions(clusters).into_iter().chain(strips).collect();
     Solution {
         complete: leftovers.is_empty(),
         roots: out_roots,
@@ -807,15 +810,47 @@ const NEAR: f64 = 1e-5;
 /// a ~1e-5 neighbourhood with excluded gaps between them; one region says
 /// the same, soundly (a hull covers more), and readably.
 fn undecided_clusters(leaves: Vec<Found>) -> Vec<Cluster> {
-    let regions: Vec<Found> = group_overlapping(leaves).into_iter().map(hull_of).collect();
-    join_near(regions)
+    let regions = join_near(group_overlapping(leaves).into_iter().map(hull_of).collect());
+    regions.into_iter().map(undecided).collect()
+}
+
+/// `region` as an undecided cluster.
+fn undecided(region: Found) -> Cluster {
+    Cluster {
+        bx: Box2::of(region.bx),
+        reason: ClusterReason::KrawczykUndecided,
+        diameters: region.diameters,
+    }
+}
+
+/// The undecided leaves as clusters, touching leaves as one region, but
+/// regions near each other not joined yet ([`join_undecided`] does that):
+/// the exact retry ([`finish_exact`]) settles each region on its own, where
+/// the hull of two regions 1e-7 apart (two close roots) would hold both.
+fn touching_regions(leaves: Vec<Found>) -> Vec<Cluster> {
+    group_overlapping(leaves)
         .into_iter()
-        .map(|c| Cluster {
-            bx: Box2::of(c.bx),
-            reason: ClusterReason::KrawczykUndecided,
+        .map(hull_of)
+        .map(undecided)
+        .collect()
+}
+
+/// [`undecided_clusters`]' joining of near regions, for a solution from
+/// [`touching_regions`]: undecided clusters whose joint hull is at most
+/// [`NEAR`] wide become one.
+fn join_undecided(mut sol: Solution) -> Solution {
+    let (near, other): (Vec<Cluster>, Vec<Cluster>) = std::mem::take(&mut sol.clusters)
+        .into_iter()
+        .partition(|c| c.reason == ClusterReason::KrawczykUndecided);
+    let regions: Vec<Found> = near
+        .into_iter()
+        .map(|c| Found {
+            bx: [interval(c.bx.u[0], c.bx.u[1]), interval(c.bx.v[0], c.bx.v[1])],
             diameters: c.diameters,
         })
-        .collect()
+        .collect();
+    sol.clusters = join_near(regions).into_iter().map(undecided).chain(other).collect();
+    sol
 }
 
 /// Joins regions whose joint hull is at most [`NEAR`] wide in both
