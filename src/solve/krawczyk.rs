@@ -209,7 +209,6 @@ impl<P: Bivariate> System<P> {
         Verdict::Undecided(x)
     }
 
-    /// Iterates `X ← K(X)` while it keeps proving uniqueness and shrinking.
     /// Narrows the enclosure `k` of the one root of a box `x ⊃ k`: first by
     /// [`System::newton_jump`], else by Krawczyk steps until they stop
     /// halving the width.
@@ -236,9 +235,7 @@ impl<P: Bivariate> System<P> {
         }
         k
     }
-}
 
-impl<P: Bivariate> System<P> {
     /// The root in `k`, where `k` lies in a box proven to hold exactly one
     /// root: `f64` Newton steps on the midpoint system from `mid k`, then one
     /// Krawczyk step on a box `B ⊂ k` a few ulps wide around the result.

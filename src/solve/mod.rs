@@ -141,6 +141,11 @@ impl Box2 {
         }
     }
 
+    /// The same box as intervals (the inverse of [`Box2::of`]).
+    fn ibox(&self) -> IBox {
+        [interval(self.u[0], self.u[1]), interval(self.v[0], self.v[1])]
+    }
+
     /// `true` if the point lies in the closed box.
     pub fn contains(&self, u: f64, v: f64) -> bool {
         self.u[0] <= u && u <= self.u[1] && self.v[0] <= v && v <= self.v[1]
@@ -458,7 +463,7 @@ fn finish_exact(mut sol: Solution, sys: &settle::ExactSystem) -> Solution {
                 rejected = true;
                 continue;
             }
-            let place = locate([interval(bx.u[0], bx.u[1]), interval(bx.v[0], bx.v[1])], sys.domain());
+            let place = locate(bx.ibox(), sys.domain());
             if place == Place::Outside {
                 sol.stats.outside_domain += 1;
                 continue;
@@ -845,7 +850,7 @@ fn join_undecided(mut sol: Solution) -> Solution {
     let regions: Vec<Found> = near
         .into_iter()
         .map(|c| Found {
-            bx: [interval(c.bx.u[0], c.bx.u[1]), interval(c.bx.v[0], c.bx.v[1])],
+            bx: c.bx.ibox(),
             diameters: c.diameters,
         })
         .collect();
