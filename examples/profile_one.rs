@@ -1,7 +1,9 @@
 //! One workload in a loop, for profilers: the certified hc solve of Example 1
 //! (`profile_one N`), or the counters of both kernels (`profile_one stats`).
 use inari::Interval;
+use rootclip::poly::TriBall;
 use rootclip::solve::driver::{self, Limits, Probe};
+use rootclip::solve::num::GeoIv;
 use rootclip::solve::{solve_triangle, Method, SolveOptions, SplitRule};
 use rootclip::{parse_polynomial, Scalar};
 fn main() {
@@ -43,9 +45,9 @@ fn main() {
             split: SplitRule::Halving,
             swap_roles: true,
         };
-        let ri = driver::run(&f, &g, None, &limits, &mut |_| Probe::Undecided);
-        let (ff, gf) = (f.map(|x| x.mid()), g.map(|x| x.mid()));
-        let rf = driver::run(&ff, &gf, None, &limits, &mut |_| Probe::Undecided);
+        let (fb, gb) = (TriBall::enclose(&f).unwrap(), TriBall::enclose(&g).unwrap());
+        let ri = driver::run::<GeoIv>(&fb, &gb, None, &limits, &mut |_| Probe::Undecided);
+        let rf = driver::run::<f64>(&fb, &gb, None, &limits, &mut |_| Probe::Undecided);
         println!(
             "interval: {:?} leaves {}\nf64:      {:?} leaves {}",
             ri.counters,
@@ -55,6 +57,17 @@ fn main() {
         );
         let sol = solve_triangle(&f, &g, &SolveOptions::default()).unwrap();
         println!("solve_triangle stats: {:?}", sol.stats);
+        return;
+    }
+    if let Some(k) = arg.strip_prefix("plain") {
+        let (ff, gf) = (f.map(|x| x.mid()), g.map(|x| x.mid()));
+        let opts = SolveOptions {
+            probe: false,
+            ..SolveOptions::default()
+        };
+        for _ in 0..k.parse().unwrap_or(200) {
+            std::hint::black_box(rootclip::solve::solve_triangle_f64(&ff, &gf, &opts));
+        }
         return;
     }
     let n: usize = arg.parse().unwrap_or(200);

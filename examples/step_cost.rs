@@ -1,7 +1,11 @@
-//! Times the pieces of one clipping step (interval kernel) on Example 1's
-//! first tri-box: subdivision, fat curves, preprocessing, candidate geometry.
+//! Times the pieces of one clipping step on Example 1's first tri-box, in the
+//! certified solver's ball arithmetic (geometry in `GeoIv`) and in the plain
+//! `f64` iteration: subdivision, fat curves, preprocessing, a clip per method,
+//! the verified tri-box clip.
 use inari::Interval;
+use rootclip::poly::TriBall;
 use rootclip::solve::method::{clip_bounds, fat_curve, preprocess_general, Method};
+use rootclip::solve::num::GeoIv;
 use rootclip::solve::tribox::TriBox;
 use rootclip::{parse_polynomial, Scalar};
 use std::time::Instant;
@@ -10,47 +14,45 @@ fn time(name: &str, n: usize, mut f: impl FnMut()) {
     for _ in 0..n {
         f();
     }
-    println!("{name:>28}: {:8.2} µs", t.elapsed().as_secs_f64() / n as f64 * 1e6);
+    println!("{name:>32}: {:8.3} µs", t.elapsed().as_secs_f64() / n as f64 * 1e6);
 }
 fn main() {
-    let f = parse_polynomial("u^3 - v")
-        .unwrap()
-        .to_triangle(3)
-        .map(Interval::from_rational);
-    let g = parse_polynomial("u^3 + v - 1/4")
-        .unwrap()
-        .to_triangle(3)
-        .map(Interval::from_rational);
+    let ball =
+        |s: &str| TriBall::enclose(&parse_polynomial(s).unwrap().to_triangle(3).map(Interval::from_rational)).unwrap();
+    let (f, g) = (ball("u^3 - v"), ball("u^3 + v - 1/4"));
     let tb = TriBox {
         verts: [[0.6, 0.1], [0.45, 0.3], [0.4, 0.05]],
     };
-    let verts = tb.bary_intervals();
-    let (fa, fb) = (f.subdivide(&verts), g.subdivide(&verts));
+    let (fa, fb) = (f.subdivide(&tb.verts), g.subdivide(&tb.verts));
     let c = tb.incenter_bary();
-    let n = 20000;
+    let n = 200_000;
     time("subdivide (deg 3)", n, || {
-        std::hint::black_box(f.subdivide(&verts));
+        std::hint::black_box(f.subdivide(std::hint::black_box(&tb.verts)));
     });
-    time("fat line (deg 3)", n, || {
-        std::hint::black_box(fat_curve(&fa, 1));
+    time("fat line (deg 3), GeoIv", n, || {
+        std::hint::black_box(fat_curve::<GeoIv>(&fa, 1));
     });
-    time("fat conic (deg 3)", n, || {
-        std::hint::black_box(fat_curve(&fb, 2));
+    time("fat conic (deg 3), GeoIv", n, || {
+        std::hint::black_box(fat_curve::<GeoIv>(&fb, 2));
     });
     time("preprocess_general", n, || {
         std::hint::black_box(preprocess_general(&fa, &fb, c));
     });
     for m in Method::ALL {
-        time(&format!("clip_bounds {m}"), n, || {
-            std::hint::black_box(clip_bounds(m, &fa, &fb, c));
+        time(&format!("clip_bounds {m}, GeoIv"), n, || {
+            std::hint::black_box(clip_bounds::<GeoIv>(m, &fa, &fb, c));
+        });
+        time(&format!("clip_bounds {m}, f64"), n, || {
+            std::hint::black_box(clip_bounds::<f64>(m, &fa, &fb, c));
         });
     }
-    let (a, b) = (Interval::from_f64(0.3).unwrap(), Interval::from_f64(0.7).unwrap());
-    time("1e6 interval mul", 1, || {
-        let mut x = a;
-        for _ in 0..1_000_000 {
-            x = std::hint::black_box(x * b + a);
-        }
-        std::hint::black_box(x);
+    time("TriBox::clip (verified)", n, || {
+        std::hint::black_box(tb.clip(std::hint::black_box([0.1, 0.2, 0.3])));
+    });
+    time("TriBox::clip_unverified", n, || {
+        std::hint::black_box(tb.clip_unverified(std::hint::black_box([0.1, 0.2, 0.3])));
+    });
+    time("TriBox::split4", n, || {
+        std::hint::black_box(std::hint::black_box(&tb).split4());
     });
 }

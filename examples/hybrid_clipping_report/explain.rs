@@ -5,9 +5,11 @@ use super::*;
 use inari::Interval;
 use num_rational::BigRational;
 use num_traits::Zero;
+use rootclip::poly::TriBall;
 use rootclip::solve::driver::{self, Limits, Probe};
-use rootclip::solve::fatcurve::{ClipBounds, Fat};
-use rootclip::solve::method::{clip_bounds, fat_curve, preprocess, preprocess_general};
+use rootclip::solve::fatcurve::ClipBounds;
+use rootclip::solve::method::{clip_bounds, preprocess, preprocess_general};
+use rootclip::solve::num::GeoIv;
 use rootclip::solve::solve_triangle;
 use rootclip::solve::tribox::TriBox;
 use rootclip::{Scalar, TriBezier};
@@ -21,6 +23,11 @@ fn system(ex: &Example) -> (TriBezier<Interval>, TriBezier<Interval>, [TriBezier
         eg.map(Interval::from_rational),
         [ef, eg],
     )
+}
+
+/// The ball polynomial (the solver's working form) of an enclosed polynomial.
+fn ball(p: &TriBezier<Interval>) -> TriBall {
+    TriBall::enclose(p).expect("bounded coefficients")
 }
 
 fn rational(x: f64) -> BigRational {
@@ -72,11 +79,10 @@ fn exact_det_a(fa: &TriBezier<BigRational>, fb: &TriBezier<BigRational>, c: [f64
 }
 
 /// Width `2δ/|∇l|` of the fat line of `p` (local coordinates).
-fn strip_width(p: &TriBezier<Interval>) -> f64 {
-    match fat_curve(p, 1) {
-        Fat::Line(l, d) => 2.0 * d / l.c[1].mid().hypot(l.c[2].mid()),
-        Fat::Conic(..) => f64::INFINITY,
-    }
+fn strip_width(p: &TriBall) -> f64 {
+    let r = p.reduce(1);
+    let a = &r.approx;
+    2.0 * r.delta / (a[1] - a[0]).hypot(a[2] - a[0])
 }
 
 /// A right triangle with legs `h` whose incenter is near `root`.
@@ -106,7 +112,10 @@ singular; how often `method::preprocess_general` has a solution.\n\n\
             let (xa, xb) = (exact_on(&ef, tb), exact_on(&eg, tb));
             let c = tb.incenter_bary();
             zero += usize::from(exact_det_a(&xa, &xb, c).is_zero());
-            let (fa, fb) = (xa.map(Interval::from_rational), xb.map(Interval::from_rational));
+            let (fa, fb) = (
+                ball(&xa.map(Interval::from_rational)),
+                ball(&xb.map(Interval::from_rational)),
+            );
             singular += usize::from(preprocess(&fa, &fb, c).is_none());
             general += usize::from(preprocess_general(&fa, &fb, c).is_some());
         }
@@ -161,8 +170,8 @@ root (fat-line width `2δ/|∇l|` in the tri-box's local coordinates):\n\n\
         for h in [1e-1, 1e-2, 1e-3] {
             let tb = tribox_around(ex.tracked_root, h);
             let (fa, fb) = (
-                exact_on(&ef, &tb).map(Interval::from_rational),
-                exact_on(&eg, &tb).map(Interval::from_rational),
+                ball(&exact_on(&ef, &tb).map(Interval::from_rational)),
+                ball(&exact_on(&eg, &tb).map(Interval::from_rational)),
             );
             let plain = strip_width(&fa);
             let hat = preprocess_general(&fa, &fb, tb.incenter_bary()).map(|p| strip_width(&p));
@@ -359,7 +368,8 @@ on the whole triangle, then `TriBox::clip`):\n\n\
     for (i, ex) in ctx.examples.iter().enumerate() {
         let (f, g, _) = system(ex);
         for m in [Method::HcNoPre, Method::Hc] {
-            let ClipBounds::Keep(mins) = clip_bounds(m, &f, &g, TriBox::unit().incenter_bary()) else {
+            let ClipBounds::Keep(mins) = clip_bounds::<GeoIv>(m, &ball(&f), &ball(&g), TriBox::unit().incenter_bary())
+            else {
                 return Err("the first clip excluded the whole triangle".into());
             };
             let clipped = TriBox::unit().clip(mins).map_or(DIAM0, |t| t.diam());
@@ -449,7 +459,7 @@ fn separation_in_tree(ex: &Example, m: Method, variant: Variant) -> Res<Option<(
         split: o.split,
         swap_roles: o.swap_roles,
     };
-    let run = driver::run(&f, &g, Some(&exact), &limits, &mut |_| Probe::Undecided);
+    let run = driver::run::<GeoIv>(&ball(&f), &ball(&g), Some(&exact), &limits, &mut |_| Probe::Undecided);
     let sol = repro::run(ex, m, 1e-14, variant)?;
     let near = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
     let roots: Vec<[f64; 2]> = sol.roots.iter().map(|r| [r.u, r.v]).collect();

@@ -5,6 +5,7 @@
 //! All BB types are generic over [`Scalar`](crate::scalar::Scalar), so the same
 //! code runs in `f64`, in rigorous intervals and in exact rationals.
 
+pub mod ball;
 pub mod dyadic;
 pub mod l2;
 pub mod monomial;
@@ -13,6 +14,7 @@ pub mod tensor;
 pub mod triangle;
 pub mod univariate;
 
+pub use ball::{Reduced, TriBall, TriBallDD};
 pub use monomial::Polynomial;
 pub use parse::parse_polynomial;
 pub use tensor::{Direction, TensorBezier, TensorReduction};

@@ -324,7 +324,7 @@ pub fn intersect_with(patch: &Patch, ray: &Ray, opts: &RayOptions) -> Result<Ray
         }
     };
     let sol = match solved {
-        Solved::Solution(s) => s,
+        Solved::Solution(s) => *s,
         Solved::NoHits => {
             return Ok(RayOutcome::Hits(RayHits {
                 complete: true,
@@ -483,7 +483,7 @@ fn select(hits: &mut Vec<Hit>, query: Query) {
 }
 
 enum Solved {
-    Solution(Solution),
+    Solution(Box<Solution>),
     /// An equation's coefficients all have one strict sign.
     NoHits,
     ZeroEquation,
@@ -502,7 +502,7 @@ fn run(f: &[Interval], g: &[Interval], solve: impl FnOnce() -> Result<Solution>)
         return Ok(Solved::ZeroEquation);
     }
     match solve() {
-        Ok(s) => Ok(Solved::Solution(s)),
+        Ok(s) => Ok(Solved::Solution(Box::new(s))),
         // Unreachable after the screen above (kept as the solver's own word).
         Err(Error::Degenerate(_)) => Ok(Solved::ZeroEquation),
         Err(e) => Err(e),

@@ -8,11 +8,11 @@
 //! every coefficient of `f` or of `g` on it has one strict sign.
 
 use super::fatcurve::{intersect_bounds, ClipBounds};
-use super::method::{clip_bounds_with, Method};
-use super::num::Num;
+use super::method::{clip_bounds, Method};
+use super::num::Geo;
 use super::tribox::TriBox;
 use crate::poly::dyadic::subdivide_dyadic;
-use crate::poly::TriBezier;
+use crate::poly::{tri_index, TriBall, TriBallDD, TriBezier};
 use crate::scalar::Sign;
 use num_rational::BigRational;
 
@@ -93,18 +93,31 @@ pub struct Node {
 
 /// A tri-box the loop stopped at, with its polynomials and tree node.
 #[derive(Clone, Debug)]
-pub struct Leaf<S> {
+pub struct Leaf {
     /// The tri-box (root-local coordinates).
     pub tb: TriBox,
     /// Its node in the trace.
     pub node: usize,
-    /// `f` on the tri-box.
-    pub fa: TriBezier<S>,
-    /// `g` on the tri-box.
-    pub fb: TriBezier<S>,
-    /// `fa`, `fb` were computed exactly (rationals, then enclosed), as are the
-    /// polynomials of every tri-box below this one.
-    pub exact: bool,
+    /// `f` on the tri-box (scaled by the run's power of two).
+    pub fa: TriBall,
+    /// `g` on the tri-box (scaled likewise).
+    pub fb: TriBall,
+    /// How `fa`, `fb` were computed; tri-boxes below this one are computed
+    /// at least as precisely (within the exact budget).
+    pub precision: Precision,
+}
+
+/// How a tri-box's polynomials were computed from the root triangle's.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Precision {
+    /// Float subdivision ([`TriBall::subdivide`]): radius a few ulps of the
+    /// root polynomial's largest coefficient.
+    Float,
+    /// Compensated subdivision ([`TriBallDD::subdivide`]): radius a few ulps
+    /// of the tri-box's own coefficients.
+    Compensated,
+    /// Exact subdivision of the rational input, then enclosed.
+    Exact,
 }
 
 /// Below this diameter a stalled tri-box is recomputed from the exact input:
@@ -114,19 +127,22 @@ pub struct Leaf<S> {
 /// rounding relative to their own (tiny) size.
 pub const EXACT_BELOW: f64 = 1e-6;
 
-/// Coefficient enclosures wider than `1e-4` of the largest coefficient: the
-/// rounding inherited from the root triangle's scale starts to dominate.
-fn noisy<S: Num>(p: &TriBezier<S>) -> bool {
-    if !S::KERNEL.is_rigorous() {
-        return false;
-    }
-    let (mut width, mut size) = (0.0f64, 0.0f64);
-    for c in p.coeffs() {
-        width = width.max(c.upper() - c.lower());
-        size = size.max(c.mag());
-    }
-    width > 1e-4 * size
+/// Rounding noise (the ball's diameter) above [`NOISE_RATIO`] of the largest
+/// coefficient: the rounding inherited from the root triangle's scale (a few
+/// ulps of the *root's* coefficients, while a small tri-box's coefficients
+/// are small) starts to limit clipping.
+fn noisy(p: &TriBall) -> bool {
+    2.0 * p.rad() > NOISE_RATIO * p.mag()
 }
+
+/// A clip of a tri-box of diameter `h` across a transversal root can shrink it
+/// to about `ρ·h`, where `ρ` is the relative noise of the coefficients
+/// (the fat curves are at least that wide). Recomputing from the exact input
+/// when `ρ > 1e-9` below [`EXACT_BELOW`] keeps that floor under
+/// `1e-9 · 1e-6 = 1e-15`, below every `ε` the paper's tables use, and where
+/// the curves meet at a small angle the exact coefficients are what lets
+/// clipping continue at all.
+pub const NOISE_RATIO: f64 = 1e-9;
 
 /// After this many undecided probes in a row, only every 16th eligible
 /// tri-box is probed.
@@ -159,6 +175,10 @@ pub struct Counters {
     pub probes: usize,
     /// Tri-boxes discarded by a probe.
     pub probe_exclusions: usize,
+    /// Tri-boxes recomputed in compensated arithmetic (noisy or stalled).
+    pub compensated_restarts: usize,
+    /// Tri-boxes whose polynomials were computed in compensated arithmetic.
+    pub compensated_boxes: usize,
     /// Stalled tri-boxes recomputed from the exact input.
     pub exact_restarts: usize,
     /// Tri-boxes whose polynomials were computed from the exact input.
@@ -170,11 +190,11 @@ pub struct Counters {
 
 /// What the loop produced.
 #[derive(Clone, Debug)]
-pub struct Run<S> {
+pub struct Run {
     /// Tri-boxes with diameter below `eps` (or too small to split further).
-    pub leaves: Vec<Leaf<S>>,
+    pub leaves: Vec<Leaf>,
     /// Tri-boxes left unprocessed by a budget.
-    pub leftovers: Vec<Leaf<S>>,
+    pub leftovers: Vec<Leaf>,
     /// The recursion tree.
     pub nodes: Vec<Node>,
     /// Counters.
@@ -185,61 +205,84 @@ pub struct Run<S> {
     /// edges where both equations may vanish ([`vanishing_edges`]); they are
     /// undecided regions, never explored.
     pub strips: Vec<[[f64; 2]; 2]>,
-    /// The float kernel's absolute coefficient noise (0 for the rigorous
-    /// kernels): added to fat-curve widths and check-sign thresholds.
-    pub noise: f64,
+    /// The power of two `e` the system was scaled by (`2^e f`, `2^e g`:
+    /// the same roots; see [`TriBall::normalizing_exponent`]).
+    pub scale_exp: i32,
 }
 
-/// Check-sign with untracked noise (plain `f64`): every coefficient of one
-/// strict sign and, in the float kernel, larger than `noise` in magnitude.
-fn signed_beyond<S: Num>(f: &TriBezier<S>, noise: f64) -> bool {
-    uniform_sign(f).is_some() && (S::KERNEL.is_rigorous() || f.coeffs().iter().all(|c| c.mag() > noise))
+/// A strict sign shared by every coefficient of every member (check-sign):
+/// the polynomial has that sign on the whole tri-box. A proof for balls; for
+/// the plain iteration, the radius is its noise estimate.
+pub fn uniform_sign(f: &TriBall) -> Option<Sign> {
+    f.strict_sign()
 }
 
-/// The absolute rounding noise of coefficients computed in plain `f64` from
-/// `f` and `g` by subdivision: `64·n·2⁻⁵³·max|coefficient|` (de Casteljau
-/// errs by a few units in the last place of the largest coefficient per
-/// step). 0 for the rigorous kernels, whose enclosures carry their errors.
-fn float_noise<S: Num>(f: &TriBezier<S>, g: &TriBezier<S>) -> f64 {
-    if S::KERNEL.is_rigorous() {
-        return 0.0;
+/// Everything a step needs besides the tri-box: the root system (scaled), the
+/// exact input, the limits and the output under construction.
+struct Ctx<'a> {
+    f: TriBall,
+    g: TriBall,
+    exact: Option<&'a ExactPair>,
+    /// The root pair in double-double, built on first use.
+    dd: Option<[TriBallDD; 2]>,
+    limits: &'a Limits,
+    out: Run,
+}
+
+impl Ctx<'_> {
+    /// The root pair in double-double: from the exact input when there is
+    /// one, else the float balls themselves; scaled like `f`, `g`.
+    fn dd(&mut self) -> &[TriBallDD; 2] {
+        if self.dd.is_none() {
+            let e = self.out.scale_exp;
+            let pair = match self.exact {
+                Some([fe, ge]) => [fe, ge].map(|p| TriBallDD::from_rationals(p.degree(), p.coeffs()).scaled_pow2(e)),
+                None => [&self.f, &self.g].map(TriBallDD::from_ball),
+            };
+            self.dd = Some(pair);
+        }
+        self.dd.as_ref().expect("just built")
     }
-    let m = f.coeffs().iter().chain(g.coeffs()).map(|c| c.mag()).fold(0.0, f64::max);
-    64.0 * f.degree().max(g.degree()).max(1) as f64 * f64::EPSILON * 0.5 * m
+
+    /// The exact input, if there is one and its budget is not spent.
+    fn exact_left(&self) -> bool {
+        self.exact.is_some() && self.out.counters.exact_boxes < self.limits.max_exact
+    }
 }
 
-/// A strict sign shared by every coefficient (the polynomial has that sign on
-/// the whole tri-box), rigorous for the interval kernel.
-pub fn uniform_sign<S: Num>(f: &TriBezier<S>) -> Option<Sign> {
-    let first = f.coeffs()[0].sign_class();
-    let strict = matches!(first, Sign::Positive | Sign::Negative);
-    (strict && f.coeffs().iter().all(|c| c.sign_class() == first)).then_some(first)
-}
-
-/// Runs Algorithm 1 on the root triangle, on which `f` and `g` are given.
-/// `probe` is asked about stalled small tri-boxes (see [`Limits::probe_below`]).
-pub fn run<S: Num>(
-    f: &TriBezier<S>,
-    g: &TriBezier<S>,
+/// Runs Algorithm 1 on the root triangle, on which `f` and `g` are given
+/// (same degree). `probe` is asked about stalled small tri-boxes (see
+/// [`Limits::probe_below`]). `G` is the geometry kernel (module docs).
+pub fn run<G: Geo>(
+    f: &TriBall,
+    g: &TriBall,
     exact: Option<&ExactPair>,
     limits: &Limits,
     probe: &mut dyn FnMut(&TriBox) -> Probe,
-) -> Run<S> {
-    let mut out = Run {
-        leaves: Vec::new(),
-        leftovers: Vec::new(),
-        nodes: Vec::new(),
-        counters: Counters::default(),
-        futile_probes: 0,
-        strips: Vec::new(),
-        noise: float_noise(f, g),
+) -> Run {
+    let scale_exp = TriBall::normalizing_exponent(&[f, g]);
+    let mut cx = Ctx {
+        f: f.scaled_pow2(scale_exp),
+        g: g.scaled_pow2(scale_exp),
+        exact: exact.filter(|_| G::RIGOROUS),
+        dd: None,
+        limits,
+        out: Run {
+            leaves: Vec::new(),
+            leftovers: Vec::new(),
+            nodes: Vec::new(),
+            counters: Counters::default(),
+            futile_probes: 0,
+            strips: Vec::new(),
+            scale_exp,
+        },
     };
-    if uniform_sign(f).is_some() || uniform_sign(g).is_some() {
-        out.counters.sign_exclusions += 1;
-        return out;
+    if uniform_sign(&cx.f).is_some() || uniform_sign(&cx.g).is_some() {
+        cx.out.counters.sign_exclusions += 1;
+        return cx.out;
     }
-    let (root, fa, fb) = cut_vanishing_edges(f, g, &mut out.strips);
-    out.nodes.push(Node {
+    let (root, fa, fb) = cut_vanishing_edges(&cx.f, &cx.g, &mut cx.out.strips);
+    cx.out.nodes.push(Node {
         parent: None,
         level: 0,
         diam: root.diam(),
@@ -249,22 +292,22 @@ pub fn run<S: Num>(
         node: 0,
         fa,
         fb,
-        exact: false,
+        precision: Precision::Float,
     }];
     while let Some(item) = stack.pop() {
-        let node = out.nodes[item.node];
+        let node = cx.out.nodes[item.node];
         if item.tb.diam() < limits.eps || too_small(&item.tb) {
-            out.leaves.push(item);
+            cx.out.leaves.push(item);
             continue;
         }
-        if out.counters.boxes >= limits.max_boxes || node.level >= limits.max_depth {
-            out.leftovers.push(item);
+        if cx.out.counters.boxes >= limits.max_boxes || node.level >= limits.max_depth {
+            cx.out.leftovers.push(item);
             continue;
         }
-        out.counters.boxes += 1;
-        step(f, g, exact, item, limits, &mut out, &mut stack, probe);
+        cx.out.counters.boxes += 1;
+        step::<G>(&mut cx, item, &mut stack, probe);
     }
-    out
+    cx.out
 }
 
 /// What the combination `w_f f + w_g g` that is closest to vanishing says
@@ -290,19 +333,16 @@ enum Combination {
     Open,
 }
 
-fn separating_combination<S: Num>(f: &TriBezier<S>, g: &TriBezier<S>) -> Combination {
-    if !S::KERNEL.is_rigorous() || f.degree() != g.degree() {
+fn separating_combination(f: &TriBall, g: &TriBall) -> Combination {
+    if f.degree() != g.degree() {
         return Combination::Open;
     }
-    fn lost<S: Num>(mut c: impl Iterator<Item = S>) -> bool {
-        c.all(|c| matches!(c.sign_class(), Sign::Zero | Sign::Straddles))
-    }
-    if lost(f.coeffs().iter().copied()) || lost(g.coeffs().iter().copied()) {
+    if f.sign_lost() || g.sign_lost() {
         return Combination::Lost;
     }
     let centre = [1.0 / 3.0; 3];
-    let (_, a, _) = f.map(|x| x.to_f64()).jet2(&centre);
-    let (_, b, _) = g.map(|x| x.to_f64()).jet2(&centre);
+    let (_, a, _) = f.jet2(&centre);
+    let (_, b, _) = g.jet2(&centre);
     let Some(w) = super::method::smallest_singular_left([a[0], a[1], b[0], b[1]]) else {
         return Combination::Open;
     };
@@ -310,19 +350,10 @@ fn separating_combination<S: Num>(f: &TriBezier<S>, g: &TriBezier<S>) -> Combina
     if !(norm > 0.0 && norm.is_finite()) {
         return Combination::Open;
     }
-    let (wf, wg) = (S::pt(w[0] / norm), S::pt(w[1] / norm));
-    let h = TriBezier::new(
-        f.degree(),
-        f.coeffs()
-            .iter()
-            .zip(g.coeffs())
-            .map(|(x, y)| wf * *x + wg * *y)
-            .collect(),
-    )
-    .expect("same degree");
-    if uniform_sign(&h).is_some() {
+    let h = TriBall::combine(w[0] / norm, f, w[1] / norm, g);
+    if h.strict_sign().is_some() {
         Combination::NoRoot
-    } else if lost(h.coeffs().iter().copied()) {
+    } else if h.sign_lost() {
         Combination::Lost
     } else {
         Combination::Open
@@ -343,12 +374,21 @@ pub const VANISHING: f64 = 1.0 / (1u64 << 36) as f64;
 /// equations (nearly) vanish along that edge, a curve of roots or of near
 /// roots (a ray through, or within rounding of, a patch's collapsed edge),
 /// which no subdivision resolves quickly.
-pub fn vanishing_edges<S: Num>(f: &TriBezier<S>, g: &TriBezier<S>) -> [bool; 2] {
-    let edge = |p: &TriBezier<S>, along_v: bool| {
+pub fn vanishing_edges(f: &TriBall, g: &TriBall) -> [bool; 2] {
+    let edge = |p: &TriBall, along_v: bool| {
         let n = p.degree();
-        let scale = p.coeffs().iter().map(|c| c.mag()).fold(0.0, f64::max);
-        let tiny = |c: &S| matches!(c.sign_class(), Sign::Zero | Sign::Straddles) || c.mag() <= VANISHING * scale;
-        (0..=n).all(|k| tiny(if along_v { p.coeff(0, k) } else { p.coeff(k, 0) }))
+        let scale = p.mag();
+        let r = p.rad();
+        let tiny =
+            |m: f64| m.abs().partial_cmp(&r) != Some(std::cmp::Ordering::Greater) || m.abs() + r <= VANISHING * scale;
+        (0..=n).all(|k| {
+            let idx = if along_v {
+                tri_index(n, 0, k)
+            } else {
+                tri_index(n, k, 0)
+            };
+            tiny(p.mid()[idx])
+        })
     };
     [edge(f, true) && edge(g, true), edge(f, false) && edge(g, false)]
 }
@@ -363,11 +403,7 @@ pub fn vanishing_edges<S: Num>(f: &TriBezier<S>, g: &TriBezier<S>) -> [bool; 2] 
 /// the strips are reported, not discarded. (The edge `w = 0` is not cut: its
 /// strip has no thin bounding box; a curve of roots there still ends in a
 /// budget, reported as incomplete.)
-fn cut_vanishing_edges<S: Num>(
-    f: &TriBezier<S>,
-    g: &TriBezier<S>,
-    strips: &mut Vec<[[f64; 2]; 2]>,
-) -> (TriBox, TriBezier<S>, TriBezier<S>) {
+fn cut_vanishing_edges(f: &TriBall, g: &TriBall, strips: &mut Vec<[[f64; 2]; 2]>) -> (TriBox, TriBall, TriBall) {
     let unit = TriBox::unit();
     let cut = vanishing_edges(f, g);
     let mins = [0, 1].map(|k| if cut[k] { EDGE_STRIP } else { 0.0 });
@@ -383,7 +419,7 @@ fn cut_vanishing_edges<S: Num>(
     if cut[1] {
         strips.push([[0.0, 1.0], [0.0, EDGE_STRIP]]);
     }
-    let (fa, fb) = (restrict(f, &tb), restrict(g, &tb));
+    let (fa, fb) = (f.subdivide(&tb.verts), g.subdivide(&tb.verts));
     (tb, fa, fb)
 }
 
@@ -394,107 +430,109 @@ fn too_small(tb: &TriBox) -> bool {
     tb.diam() < 8.0 * f64::EPSILON * scale
 }
 
-fn restrict<S: Num>(f: &TriBezier<S>, tb: &TriBox) -> TriBezier<S> {
-    let verts = tb
-        .verts
-        .map(|[s, t]| [S::pt(s), S::pt(t), S::pt(1.0) - S::pt(s) - S::pt(t)]);
-    f.subdivide(&verts)
-}
-
-/// The pair on `tb`: from the exact input (then enclosed) when `use_exact`,
-/// otherwise in the kernel's arithmetic.
-fn restrict_pair<S: Num>(
-    f: &TriBezier<S>,
-    g: &TriBezier<S>,
-    exact: Option<&ExactPair>,
-    use_exact: bool,
-    tb: &TriBox,
-) -> (TriBezier<S>, TriBezier<S>) {
-    match exact {
-        Some([fe, ge]) if use_exact => {
+/// The pair on `tb` at `precision` (counted): by float or compensated ball
+/// subdivision of the root pair, or from the exact input (enclosed, then
+/// scaled like the run's system). Exact falls back to compensated when the
+/// exact input or its budget is gone.
+fn restrict_pair(cx: &mut Ctx, precision: Precision, tb: &TriBox) -> (TriBall, TriBall, Precision) {
+    match precision {
+        Precision::Exact if cx.exact_left() => {
+            cx.out.counters.exact_boxes += 1;
+            let [fe, ge] = cx.exact.expect("exact_left");
+            let e = cx.out.scale_exp;
             // Integer arithmetic over common denominators (no gcds).
-            let enclose = |p: &TriBezier<BigRational>| {
-                let c = subdivide_dyadic(p, &tb.verts).expect("tri-box vertices are finite");
-                TriBezier::new(p.degree(), c.iter().map(S::from_rational).collect()).expect("same degree")
+            let enclose = |p: &TriBezier<BigRational>| match subdivide_dyadic(p, &tb.verts) {
+                Some(c) => TriBall::enclose_rationals(p.degree(), &c).scaled_pow2(e),
+                None => TriBall::unbounded(p.degree()),
             };
-            (enclose(fe), enclose(ge))
+            (enclose(fe), enclose(ge), Precision::Exact)
         }
-        _ => (restrict(f, tb), restrict(g, tb)),
+        Precision::Exact | Precision::Compensated => {
+            cx.out.counters.compensated_boxes += 1;
+            let [f, g] = cx.dd();
+            (f.subdivide(&tb.verts), g.subdivide(&tb.verts), Precision::Compensated)
+        }
+        Precision::Float => (cx.f.subdivide(&tb.verts), cx.g.subdivide(&tb.verts), Precision::Float),
     }
 }
 
-#[allow(clippy::too_many_arguments)]
-fn step<S: Num>(
-    f: &TriBezier<S>,
-    g: &TriBezier<S>,
-    exact: Option<&ExactPair>,
-    mut item: Leaf<S>,
-    limits: &Limits,
-    out: &mut Run<S>,
-    stack: &mut Vec<Leaf<S>>,
-    probe: &mut dyn FnMut(&TriBox) -> Probe,
-) {
-    let level = out.nodes[item.node].level + 1;
+/// The next precision for a tri-box whose polynomials are too noisy: always
+/// compensated after float; exact after compensated when the exact input is
+/// there with budget left and the tri-box is below [`EXACT_BELOW`]. `None`
+/// if there is nothing better.
+fn finer(cx: &Ctx, precision: Precision, diam: f64) -> Option<Precision> {
+    match precision {
+        Precision::Float => Some(Precision::Compensated),
+        Precision::Compensated if cx.exact_left() && diam < EXACT_BELOW => Some(Precision::Exact),
+        _ => None,
+    }
+}
+
+fn step<G: Geo>(cx: &mut Ctx, mut item: Leaf, stack: &mut Vec<Leaf>, probe: &mut dyn FnMut(&TriBox) -> Probe) {
+    let limits = cx.limits;
+    let level = cx.out.nodes[item.node].level + 1;
     let diam = item.tb.diam();
-    // Past the exact budget the interval kernel takes over, also below
-    // tri-boxes that were exact so far.
-    let exact = exact.filter(|_| out.counters.exact_boxes < limits.max_exact);
-    item.exact &= exact.is_some();
-    // Counts the exact computations that `restrict_pair` is about to do.
-    let count_exact = |out: &mut Run<S>, use_exact: bool| {
-        if use_exact && exact.is_some() {
-            out.counters.exact_boxes += 1;
+    // The coefficients are noisy relative to their values: recompute more
+    // precisely before the clip is spoiled by rounding (same tri-box, same
+    // level), as long as a finer precision helps.
+    while G::RIGOROUS && (noisy(&item.fa) || noisy(&item.fb)) {
+        let Some(next) = finer(cx, item.precision, diam) else {
+            break;
+        };
+        if next == Precision::Exact {
+            cx.out.counters.exact_restarts += 1;
+        } else {
+            cx.out.counters.compensated_restarts += 1;
         }
-    };
-    if exact.is_some() && !item.exact && diam < EXACT_BELOW && (noisy(&item.fa) || noisy(&item.fb)) {
-        // The enclosures are wide relative to the values: recompute exactly
-        // before the clip is spoiled by rounding (same tri-box, same level).
-        out.counters.exact_restarts += 1;
-        count_exact(out, true);
-        let (fa, fb) = restrict_pair(f, g, exact, true, &item.tb);
+        let (fa, fb, precision) = restrict_pair(cx, next, &item.tb);
+        if precision <= item.precision {
+            break;
+        }
         item = Leaf {
             fa,
             fb,
-            exact: true,
+            precision,
             ..item
         };
     }
     let incenter = item.tb.incenter_bary();
-    let noise = out.noise;
-    let mut bounds = clip_bounds_with(limits.method, &item.fa, &item.fb, incenter, noise);
+    let mut bounds = clip_bounds::<G>(limits.method, &item.fa, &item.fb, incenter);
     if limits.swap_roles && matches!(limits.method, Method::Hc | Method::HcNoPre) {
         if let ClipBounds::Keep(m) = bounds {
             // The kept tri-box is similar to this one with ratio 1 − Σ mins.
             if 1.0 - m.iter().sum::<f64>() > 0.5 {
-                out.counters.role_swaps += 1;
-                let swapped = clip_bounds_with(limits.method, &item.fb, &item.fa, incenter, noise);
-                bounds = intersect_bounds(bounds, swapped, S::KERNEL);
+                cx.out.counters.role_swaps += 1;
+                let swapped = clip_bounds::<G>(limits.method, &item.fb, &item.fa, incenter);
+                bounds = intersect_bounds(bounds, swapped, G::RIGOROUS);
             }
         }
     }
     let mins = match bounds {
         ClipBounds::Empty => {
-            out.counters.clip_exclusions += 1;
+            cx.out.counters.clip_exclusions += 1;
             return;
         }
         ClipBounds::Keep(m) => m,
     };
     let clipped = if mins.iter().sum::<f64>() > 0.0 {
-        item.tb.clip(mins)
+        if G::RIGOROUS {
+            item.tb.clip(mins)
+        } else {
+            item.tb.clip_unverified(mins)
+        }
     } else {
         None
     };
-    let (tb, fa, fb) = match clipped {
+    let (tb, fa, fb, precision) = match clipped {
         Some(tb) if tb.diam() < diam => {
-            out.counters.clips += 1;
-            count_exact(out, item.exact);
-            let (fa, fb) = restrict_pair(f, g, exact, item.exact, &tb);
-            (tb, fa, fb)
+            cx.out.counters.clips += 1;
+            let (fa, fb, precision) = restrict_pair(cx, item.precision, &tb);
+            (tb, fa, fb, precision)
         }
-        _ => (item.tb, item.fa, item.fb),
+        _ => (item.tb, item.fa, item.fb, item.precision),
     };
-    if signed_beyond(&fa, noise) || signed_beyond(&fb, noise) {
-        out.counters.sign_exclusions += 1;
+    if uniform_sign(&fa).is_some() || uniform_sign(&fb).is_some() {
+        cx.out.counters.sign_exclusions += 1;
         return;
     }
     let new_diam = tb.diam();
@@ -502,18 +540,26 @@ fn step<S: Num>(
         SplitRule::Halving => new_diam <= 0.5 * diam,
         SplitRule::PaperLiteral => mins.iter().sum::<f64>() > 0.5 * diam && new_diam < diam,
     };
-    if !progressed && exact.is_some() && !item.exact && new_diam < EXACT_BELOW && S::KERNEL.is_rigorous() {
-        // Stalled at the rounding floor: redo this tri-box from the exact input.
-        out.counters.exact_restarts += 1;
-        count_exact(out, true);
-        let (fa, fb) = restrict_pair(f, g, exact, true, &tb);
-        let node = push_node(out, item.node, level, new_diam);
+    let stalled_finer = if G::RIGOROUS && !progressed && new_diam < EXACT_BELOW {
+        finer(cx, precision, new_diam)
+    } else {
+        None
+    };
+    if let Some(next) = stalled_finer {
+        // Stalled at the rounding floor: redo this tri-box more precisely.
+        if next == Precision::Exact {
+            cx.out.counters.exact_restarts += 1;
+        } else {
+            cx.out.counters.compensated_restarts += 1;
+        }
+        let (fa, fb, precision) = restrict_pair(cx, next, &tb);
+        let node = push_node(&mut cx.out, item.node, level, new_diam);
         stack.push(Leaf {
             tb,
             node,
             fa,
             fb,
-            exact: true,
+            precision,
         });
         return;
     }
@@ -530,12 +576,12 @@ fn step<S: Num>(
     // After a long run of futile probes (all undecided: curves running
     // within a hair of each other over a long stretch, where every tri-box
     // stalls), probe only every 16th tri-box; a probe only saves work.
-    let throttled = out.futile_probes >= FUTILE_PROBES && out.counters.boxes % 16 != 0;
+    let throttled = cx.out.futile_probes >= FUTILE_PROBES && cx.out.counters.boxes % 16 != 0;
     let verdict = if probe_here && !throttled {
-        out.counters.probes += 1;
+        cx.out.counters.probes += 1;
         let v = probe(&tb);
-        out.futile_probes = if v == Probe::Undecided {
-            out.futile_probes + 1
+        cx.out.futile_probes = if v == Probe::Undecided {
+            cx.out.futile_probes + 1
         } else {
             0
         };
@@ -548,28 +594,30 @@ fn step<S: Num>(
         node: item.node,
         fa,
         fb,
-        exact: item.exact,
+        precision,
     };
     let stop_here = match verdict {
         Probe::NoRoot => {
-            out.counters.probe_exclusions += 1;
+            cx.out.counters.probe_exclusions += 1;
             return;
         }
         Probe::Unique => true,
-        Probe::Undecided if !progressed && probe_here => match separating_combination(&next.fa, &next.fb) {
-            Combination::NoRoot => {
-                out.counters.sign_exclusions += 1;
-                return;
+        Probe::Undecided if !progressed && probe_here && G::RIGOROUS => {
+            match separating_combination(&next.fa, &next.fb) {
+                Combination::NoRoot => {
+                    cx.out.counters.sign_exclusions += 1;
+                    return;
+                }
+                Combination::Lost => true,
+                Combination::Open => new_diam < SINGULAR_FLOOR,
             }
-            Combination::Lost => true,
-            Combination::Open => new_diam < SINGULAR_FLOOR,
-        },
+        }
         Probe::Undecided => false,
     };
     if stop_here || progressed {
-        let leaf = at_level(out, next, level, new_diam);
+        let leaf = at_level(&mut cx.out, next, level, new_diam);
         if stop_here {
-            out.leaves.push(leaf);
+            cx.out.leaves.push(leaf);
         } else {
             stack.push(leaf);
         }
@@ -577,36 +625,35 @@ fn step<S: Num>(
     }
     let Some(kids) = next.tb.split4() else {
         // Collapsed at the rounding floor: hand it to the certification phase.
-        let leaf = at_level(out, next, level, new_diam);
-        return out.leaves.push(leaf);
+        let leaf = at_level(&mut cx.out, next, level, new_diam);
+        return cx.out.leaves.push(leaf);
     };
-    out.counters.splits += 1;
+    cx.out.counters.splits += 1;
     // Push in reverse so the corner at V1 is processed first.
     for kid in kids.into_iter().rev() {
-        count_exact(out, item.exact);
-        let (ka, kb) = restrict_pair(f, g, exact, item.exact, &kid);
-        if signed_beyond(&ka, out.noise) || signed_beyond(&kb, out.noise) {
-            out.counters.sign_exclusions += 1;
+        let (ka, kb, precision) = restrict_pair(cx, precision, &kid);
+        if uniform_sign(&ka).is_some() || uniform_sign(&kb).is_some() {
+            cx.out.counters.sign_exclusions += 1;
             continue;
         }
-        let node = push_node(out, item.node, level, kid.diam());
+        let node = push_node(&mut cx.out, item.node, level, kid.diam());
         stack.push(Leaf {
             tb: kid,
             node,
             fa: ka,
             fb: kb,
-            exact: item.exact,
+            precision,
         });
     }
 }
 
 /// `leaf` (whose `node` is its parent's) recorded in the trace as a child at `level`.
-fn at_level<S>(out: &mut Run<S>, mut leaf: Leaf<S>, level: usize, diam: f64) -> Leaf<S> {
+fn at_level(out: &mut Run, mut leaf: Leaf, level: usize, diam: f64) -> Leaf {
     leaf.node = push_node(out, leaf.node, level, diam);
     leaf
 }
 
-fn push_node<S>(out: &mut Run<S>, parent: usize, level: usize, diam: f64) -> usize {
+fn push_node(out: &mut Run, parent: usize, level: usize, diam: f64) -> usize {
     out.nodes.push(Node {
         parent: Some(parent),
         level,

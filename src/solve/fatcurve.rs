@@ -29,9 +29,11 @@
 //! which only weakens the clip. If no candidate is possibly feasible, `R` is
 //! empty: the tri-box holds no root.
 
-use super::num::{Geo, Num};
-use crate::poly::TriBezier;
-use crate::scalar::{iv, Kernel, Sign};
+use super::num::Geo;
+use crate::poly::{tri_indices, TriBall};
+use crate::scalar::iv;
+use crate::scalar::Sign;
+use smallvec::SmallVec;
 
 /// `a0 + a1 s + a2 t`.
 #[derive(Clone, Copy, Debug)]
@@ -47,18 +49,16 @@ pub struct Quadratic<S> {
     pub c: [S; 6],
 }
 
-impl<S: Num> Linear<S> {
-    /// The monomial form of a degree-1 BB polynomial on the tri-box.
-    pub fn from_bb(p: &TriBezier<S>) -> Self {
-        debug_assert_eq!(p.degree(), 1);
-        let c = p.coeffs(); // storage order: f_001, f_100, f_010
+impl<G: Geo> Linear<G> {
+    /// The monomial form of the degree-1 BB polynomial with float coefficients
+    /// `c` (storage order: `f_001, f_100, f_010`) on the tri-box, enclosed in
+    /// the geometry kernel.
+    pub fn from_bb(c: &[f64]) -> Self {
+        debug_assert_eq!(c.len(), 3);
+        let [c0, c1, c2] = [c[0], c[1], c[2]].map(G::pt);
         Self {
-            c: [c[0], c[1] - c[0], c[2] - c[0]],
+            c: [c0, c1 - c0, c2 - c0],
         }
-    }
-
-    fn geo(&self) -> Linear<S::Geo> {
-        Linear { c: self.c.map(S::geo) }
     }
 }
 
@@ -75,14 +75,15 @@ impl<S: Geo> Linear<S> {
     }
 }
 
-impl<S: Num> Quadratic<S> {
-    /// The monomial form of a degree-2 BB polynomial on the tri-box:
-    /// with `r = 1 − s − t`, `f = f200 s² + f020 t² + f002 r² + 2 f110 st + 2 f101 sr + 2 f011 tr`.
-    pub fn from_bb(p: &TriBezier<S>) -> Self {
-        debug_assert_eq!(p.degree(), 2);
-        let c = p.coeffs(); // f002, f101, f200, f011, f110, f020
-        let (f002, f101, f200, f011, f110, f020) = (c[0], c[1], c[2], c[3], c[4], c[5]);
-        let two = S::pt(2.0);
+impl<G: Geo> Quadratic<G> {
+    /// The monomial form of the degree-2 BB polynomial with float coefficients
+    /// `c` on the tri-box, enclosed in the geometry kernel: with
+    /// `r = 1 − s − t`, `f = f200 s² + f020 t² + f002 r² + 2 f110 st + 2 f101 sr + 2 f011 tr`.
+    pub fn from_bb(c: &[f64]) -> Self {
+        debug_assert_eq!(c.len(), 6);
+        // Storage order: f002, f101, f200, f011, f110, f020.
+        let [f002, f101, f200, f011, f110, f020] = [c[0], c[1], c[2], c[3], c[4], c[5]].map(G::pt);
+        let two = G::pt(2.0);
         Self {
             c: [
                 f002,
@@ -93,10 +94,6 @@ impl<S: Num> Quadratic<S> {
                 f020 + f002 - two * f011,
             ],
         }
-    }
-
-    fn geo(&self) -> Quadratic<S::Geo> {
-        Quadratic { c: self.c.map(S::geo) }
     }
 }
 
@@ -140,16 +137,6 @@ pub enum Fat<S> {
     Line(Linear<S>, f64),
     /// A fat conic: two level curves of a quadratic.
     Conic(Quadratic<S>, f64),
-}
-
-impl<S: Num> Fat<S> {
-    /// The same fat curve in the geometry kernel (coefficients enclosed).
-    fn geo(&self) -> Fat<S::Geo> {
-        match self {
-            Fat::Line(l, d) => Fat::Line(l.geo(), *d),
-            Fat::Conic(q, d) => Fat::Conic(q.geo(), *d),
-        }
-    }
 }
 
 impl<S: Geo> Fat<S> {
@@ -212,12 +199,12 @@ impl Bounds {
         self.any && self.mins.iter().all(|&m| m <= 0.0)
     }
 
-    fn finish(self, kernel: Kernel) -> ClipBounds {
+    fn finish(self, rigorous: bool) -> ClipBounds {
         if !self.any {
             return ClipBounds::Empty;
         }
         let m = self.mins.map(|x| if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) });
-        keep_or_empty(m, kernel)
+        keep_or_empty(m, rigorous)
     }
 }
 
@@ -225,8 +212,8 @@ impl Bounds {
 /// satisfies all three). Rigorous minima are lower bounds, so `Σ m > 1` is a
 /// proof; float minima of a converged region can exceed 1 by rounding, so the
 /// float kernel needs a margin before it calls the region empty.
-fn keep_or_empty(m: [f64; 3], kernel: Kernel) -> ClipBounds {
-    let margin = if kernel.is_rigorous() { 0.0 } else { 1e-9 };
+fn keep_or_empty(m: [f64; 3], rigorous: bool) -> ClipBounds {
+    let margin = if rigorous { 0.0 } else { 1e-9 };
     // Float minima are estimates, not lower bounds: back them off a little so
     // the float iteration does not cut an ulp past the root it converges to.
     let m = m.map(|x| (x - margin).max(0.0));
@@ -243,16 +230,12 @@ fn keep_or_empty(m: [f64; 3], kernel: Kernel) -> ClipBounds {
 
 /// The clipping bounds of `R = tri-box ∩ fats` (see the module docs).
 ///
-/// The candidates are computed in the kernel's geometry arithmetic
-/// ([`Num::Geo`]): for intervals the branchless outward-rounded
+/// The candidates are computed in the geometry kernel `G`: for the certified
+/// solver the branchless outward-rounded
 /// [`GeoIv`](super::num::GeoIv), whose enclosures are as rigorous as inari's
 /// (a few floats wider) at a fraction of the cost.
-pub fn clip_against_fat_curves<S: Num>(fats: &[Fat<S>]) -> ClipBounds {
-    let kernel = S::KERNEL;
-    match fats {
-        [a, b] => clip_in(&[a.geo(), b.geo()], kernel),
-        _ => clip_in(&fats.iter().map(Fat::geo).collect::<Vec<_>>(), kernel),
-    }
+pub fn clip_against_fat_curves<G: Geo>(fats: &[Fat<G>]) -> ClipBounds {
+    clip_in(fats)
 }
 
 /// A boundary line with what its candidates need, computed once per line:
@@ -288,7 +271,7 @@ impl<G: Geo> BoundaryLine<G> {
     }
 }
 
-fn clip_in<G: Geo>(fats: &[Fat<G>], kernel: Kernel) -> ClipBounds {
+fn clip_in<G: Geo>(fats: &[Fat<G>]) -> ClipBounds {
     let (zero, one) = (G::pt(0.0), G::pt(1.0));
     let edges = [
         Linear { c: [zero, one, zero] },
@@ -355,7 +338,7 @@ fn clip_in<G: Geo>(fats: &[Fat<G>], kernel: Kernel) -> ClipBounds {
             }
         }
     }
-    bounds.finish(kernel)
+    bounds.finish(G::RIGOROUS)
 }
 
 /// Whether `a0 + a1 s + a2 t = 0` can meet the unit square `[0, 1]²` (the
@@ -565,7 +548,12 @@ fn roots_in_unit<G: Geo>(eq: &Quad<G>, keep: &mut impl FnMut(G) -> bool) {
 /// `f = 0`, and likewise for `j` and `k`. The hull meets the axis in the
 /// convex hull of the zero-valued points and the crossings of segments between
 /// a positive and a negative point; the minimum of those is the bound.
-pub fn bezier_bounds<S: Num>(f: &TriBezier<S>) -> ClipBounds {
+///
+/// Each coefficient enters as the two ends of its range over the ball: the
+/// surface of every member lies in the convex hull of all of them. `rigorous`
+/// subtracts the proven rounding margin from each crossing (the certified
+/// solver); without it the crossings are plain `f64` proposals.
+pub fn bezier_bounds(f: &TriBall, rigorous: bool) -> ClipBounds {
     let n = f.degree().max(1);
     // The control points (i/n, j/n, k/n; f_ijk) with each coefficient's
     // enclosure as its two endpoints: the surface lies in the convex hull of
@@ -575,10 +563,11 @@ pub fn bezier_bounds<S: Num>(f: &TriBezier<S>) -> ClipBounds {
     // and a negative endpoint. (An enclosure that straddles 0 is not a point
     // at 0: its negative end pairs with positive neighbours, and the crossing
     // can lie away from it.)
-    let mut ends: Vec<([usize; 3], f64)> = Vec::with_capacity(2 * f.coeffs().len());
+    let mut pos: SmallVec<[([usize; 3], f64); 72]> = SmallVec::new();
+    let mut neg: SmallVec<[([usize; 3], f64); 72]> = SmallVec::new();
     let mut mins = [f64::INFINITY; 3];
-    for ((i, j, k), c) in crate::poly::tri_indices(f.degree()).zip(f.coeffs()) {
-        let (lo, hi) = (c.lower(), c.upper());
+    for (idx, (i, j, k)) in tri_indices(f.degree()).enumerate() {
+        let (lo, hi) = f.bounds(idx);
         if lo.is_nan() || hi.is_nan() {
             return ClipBounds::Keep([0.0; 3]);
         }
@@ -587,12 +576,21 @@ pub fn bezier_bounds<S: Num>(f: &TriBezier<S>) -> ClipBounds {
                 *m = m.min(x as f64 / n as f64);
             }
         }
-        ends.push(([i, j, k], lo));
-        if hi != lo {
-            ends.push(([i, j, k], hi));
+        for y in if hi != lo {
+            [Some(lo), Some(hi)]
+        } else {
+            [Some(lo), None]
+        }
+        .into_iter()
+        .flatten()
+        {
+            if y > 0.0 {
+                pos.push(([i, j, k], y));
+            } else if y < 0.0 {
+                neg.push(([i, j, k], y));
+            }
         }
     }
-    let (pos, neg): (Vec<&([usize; 3], f64)>, Vec<_>) = ends.iter().filter(|e| e.1 != 0.0).partition(|e| e.1 > 0.0);
     if mins[0].is_infinite() && (pos.is_empty() || neg.is_empty()) {
         return ClipBounds::Empty;
     }
@@ -605,39 +603,36 @@ pub fn bezier_bounds<S: Num>(f: &TriBezier<S>) -> ClipBounds {
     // exact crossing (plus 2⁻¹⁰⁷⁴ for a subnormal quotient), so subtracting
     // 16·2⁻⁵² gives a lower bound. This is 20–40× cheaper than interval
     // operations, and this loop is most of a Bézier clip.
-    let margin = if S::KERNEL.is_rigorous() {
-        16.0 * f64::EPSILON
-    } else {
-        0.0
-    };
-    let nn = S::from_i64(n as i64);
+    let margin = if rigorous { 16.0 * f64::EPSILON } else { 0.0 };
+    let nn = n as f64;
     for (coord, m) in mins.iter_mut().enumerate() {
         for p in &pos {
             for q in &neg {
                 let (yp, yq) = (p.1, q.1);
                 let span = yp - yq;
+                let (a, b) = (p.0[coord] as f64 / nn, q.0[coord] as f64 / nn);
                 let x = if span.is_finite() {
-                    let (a, b) = (p.0[coord] as f64 / n as f64, q.0[coord] as f64 / n as f64);
                     a + (b - a) * (yp / span) - margin
                 } else {
-                    // Overflow of yp − yq: enclose in the kernel's arithmetic.
-                    let (xp, xq) = (S::from_i64(p.0[coord] as i64) / nn, S::from_i64(q.0[coord] as i64) / nn);
-                    let (yp, yq) = (S::pt(yp), S::pt(yq));
-                    (xp + (xq - xp) * (yp / (yp - yq))).lower()
+                    // Overflow of yp − yq: enclose with outward rounding.
+                    let (xp, xq) = (iv::Iv::point(p.0[coord] as f64), iv::Iv::point(q.0[coord] as f64));
+                    let (xp, xq) = (xp.div(iv::Iv::point(nn)), xq.div(iv::Iv::point(nn)));
+                    let (yp, yq) = (iv::Iv::point(yp), iv::Iv::point(yq));
+                    xp.add(xq.sub(xp).mul(yp.div(yp.sub(yq)))).lo
                 };
                 *m = m.min(x);
             }
         }
     }
     let m = mins.map(|x| if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) });
-    keep_or_empty(m, S::KERNEL)
+    keep_or_empty(m, rigorous)
 }
 
 /// Combines bounds that must hold together (both equations vanish at a root).
-pub fn intersect_bounds(a: ClipBounds, b: ClipBounds, kernel: Kernel) -> ClipBounds {
+pub fn intersect_bounds(a: ClipBounds, b: ClipBounds, rigorous: bool) -> ClipBounds {
     match (a, b) {
         (ClipBounds::Keep(x), ClipBounds::Keep(y)) => {
-            keep_or_empty([x[0].max(y[0]), x[1].max(y[1]), x[2].max(y[2])], kernel)
+            keep_or_empty([x[0].max(y[0]), x[1].max(y[1]), x[2].max(y[2])], rigorous)
         }
         _ => ClipBounds::Empty,
     }
@@ -647,6 +642,7 @@ pub fn intersect_bounds(a: ClipBounds, b: ClipBounds, kernel: Kernel) -> ClipBou
 mod tests {
     use super::*;
     use crate::scalar::{interval, point};
+    use crate::solve::num::GeoIv;
     use inari::Interval;
 
     #[test]
@@ -704,8 +700,12 @@ mod tests {
                 c: [coeff(1.0), coeff(2.0), coeff(2.0), coeff(2.0), coeff(2.0), coeff(2.0)],
             };
             let fats = [Fat::Line(line, 0.05 * next()), Fat::Conic(conic, 0.05 * next())];
-            let fast = clip_against_fat_curves(&fats);
-            let reference = clip_in(&fats, Kernel::Interval);
+            let fast_fats = fats.map(|f| match f {
+                Fat::Line(l, d) => Fat::Line(Linear { c: l.c.map(GeoIv::of) }, d),
+                Fat::Conic(q, d) => Fat::Conic(Quadratic { c: q.c.map(GeoIv::of) }, d),
+            });
+            let fast = clip_against_fat_curves(&fast_fats);
+            let reference = clip_in(&fats);
             match (fast, reference) {
                 (ClipBounds::Keep(f), ClipBounds::Keep(r)) => {
                     compared += 1;
@@ -737,25 +737,27 @@ mod tests {
             let n = 1 + case % 6;
             let len = (n + 1) * (n + 2) / 2;
             let scale = [1.0, 1e-300, 1e300, 1e-310, 3.0][case % 5];
-            let coeffs: Vec<Interval> = (0..len)
-                .map(|_| {
-                    let x = ((rnd() % 2001) as f64 - 1000.0) / 997.0 * scale;
-                    let w = if rnd() % 3 == 0 { 0.0 } else { x.abs() * 1e-3 };
-                    interval(x - w, x + w)
-                })
+            let mids: Vec<f64> = (0..len)
+                .map(|_| ((rnd() % 2001) as f64 - 1000.0) / 997.0 * scale)
                 .collect();
-            let f = crate::poly::TriBezier::new(n, coeffs.clone()).unwrap();
-            let ClipBounds::Keep(mins) = bezier_bounds(&f) else {
+            let rad = if rnd() % 3 == 0 { 0.0 } else { scale * 1e-3 };
+            let f = TriBall::new(n, &mids, rad).unwrap();
+            let q = |x: f64| BigRational::from_float(x).unwrap();
+            // The exact coefficient ranges [m − r, m + r].
+            let ends: Vec<[BigRational; 2]> = mids.iter().map(|&m| [q(m) - q(rad), q(m) + q(rad)]).collect();
+            let ClipBounds::Keep(mins) = bezier_bounds(&f, true) else {
                 // Empty: every endpoint strictly of one sign.
-                assert!(coeffs.iter().all(|c| c.inf() > 0.0) || coeffs.iter().all(|c| c.sup() < 0.0));
+                assert!(
+                    ends.iter().all(|e| e[0].is_positive()) || ends.iter().all(|e| e[1].is_negative()),
+                    "case {case}"
+                );
                 continue;
             };
             // Exact: the smallest abscissa of the hull's crossings, per coordinate.
-            let q = |x: f64| BigRational::from_float(x).unwrap();
             let nq = BigRational::from_integer(n.into());
             let pts: Vec<([usize; 3], BigRational)> = crate::poly::tri_indices(n)
-                .zip(&coeffs)
-                .flat_map(|((i, j, k), c)| [([i, j, k], q(c.inf())), ([i, j, k], q(c.sup()))])
+                .zip(&ends)
+                .flat_map(|((i, j, k), e)| [([i, j, k], e[0].clone()), ([i, j, k], e[1].clone())])
                 .collect();
             for (coord, &m) in mins.iter().enumerate() {
                 let mut exact: Option<BigRational> = None;

@@ -2,8 +2,8 @@
 //! hybrid clipping (§2.3.1, Eqs. (7)–(8)).
 
 use super::fatcurve::{bezier_bounds, clip_against_fat_curves, intersect_bounds, ClipBounds, Fat, Linear, Quadratic};
-use super::num::Num;
-use crate::poly::TriBezier;
+use super::num::Geo;
+use crate::poly::{Reduced, TriBall};
 use std::fmt;
 use std::str::FromStr;
 
@@ -55,41 +55,31 @@ impl FromStr for Method {
     }
 }
 
-/// The degree-`k` fat curve of `f` on its tri-box: the L2-best approximant
-/// (Algorithm 2) with `δ` rounded up. For `deg f ≤ k` the approximant is `f`
-/// itself (rounded to points) and `δ` covers the coefficient enclosures.
-pub fn fat_curve<S: Num>(f: &TriBezier<S>, k: usize) -> Fat<S> {
-    fat_curve_with(f, k, 0.0)
+/// The degree-`k` fat curve of `f` on its tri-box (`k` = 1 or 2): the L2-best
+/// approximant (Algorithm 2) of the ball's midpoints, a float polynomial, with
+/// the rigorous `δ` of [`TriBall::reduce`], lifted into the geometry kernel
+/// `G`. `None` when `δ` is not finite (an overflowed ball): no fat curve
+/// exists, and the caller must not clip.
+pub fn fat_curve<G: Geo>(f: &TriBall, k: usize) -> Option<Fat<G>> {
+    to_fat(&f.reduce(k), f)
 }
 
-/// [`fat_curve`] with `noise` added to `δ` in the float kernel: the absolute
-/// rounding noise of `f`'s coefficients, which plain `f64` does not track
-/// (ignored by the rigorous kernels, whose enclosures carry it).
-fn fat_curve_with<S: Num>(f: &TriBezier<S>, k: usize, noise: f64) -> Fat<S> {
-    let (approx, delta) = if f.degree() > k {
-        let r = f.reduce_l2(k).expect("k < degree");
-        (r.approx, r.delta.upper())
+fn to_fat<G: Geo>(red: &Reduced, f: &TriBall) -> Option<Fat<G>> {
+    if !red.delta.is_finite() {
+        return None;
+    }
+    // The float kernel's geometry has no enclosures: give its fat curves the
+    // slack of a few rounding errors on the coefficient scale, or points on a
+    // curve (δ = 0 for an exact low-degree equation) test as outside it.
+    let delta = if G::RIGOROUS {
+        red.delta
     } else {
-        let pts = f.map(|c| c.to_point());
-        let d = f
-            .coeffs()
-            .iter()
-            .zip(pts.coeffs())
-            .map(|(a, b)| (*a - *b).abs().upper())
-            .fold(0.0, f64::max);
-        (pts.elevate_cached(k), d)
+        red.delta + 1e-12 * f.max_mid()
     };
-    // The float kernel has no enclosures: give its fat curves the slack of a
-    // few rounding errors on the coefficient scale, or points on a curve
-    // (δ = 0 for an exact low-degree equation) test as outside it.
-    let delta = if S::KERNEL.is_rigorous() {
-        delta
-    } else {
-        delta + noise + 1e-12 * f.coeffs().iter().map(|c| c.mag()).fold(0.0, f64::max)
-    };
-    match k {
-        1 => Fat::Line(Linear::from_bb(&approx), delta),
-        _ => Fat::Conic(Quadratic::from_bb(&approx), delta),
+    match red.approx.len() {
+        3 => Some(Fat::Line(Linear::from_bb(&red.approx), delta)),
+        6 => Some(Fat::Conic(Quadratic::from_bb(&red.approx), delta)),
+        _ => None,
     }
 }
 
@@ -106,26 +96,45 @@ fn fat_curve_with<S: Num>(f: &TriBezier<S>, k: usize, noise: f64) -> Fat<S> {
 /// uses `f^α` (the paper's fallback).
 ///
 /// Any `ℓ` keeps the method rigorous: every root of `{f^α, f^β}` is a root of
-/// `{f̂, f^β}`, and `f̂`'s coefficients are enclosed in the kernel's arithmetic.
-pub fn preprocess<S: Num>(fa: &TriBezier<S>, fb: &TriBezier<S>, c: [f64; 3]) -> Option<TriBezier<S>> {
-    let delta = fa.sub(fb);
-    paper_multiplier(&jet(&delta, c), &jet(fb, c), c).map(|l| apply_paper(&delta, fb, l))
+/// `{f̂, f^β}`, and `f̂ = ℓΔ + f^β` is enclosed by ball arithmetic
+/// ([`TriBall::linear_combination`]).
+pub fn preprocess(fa: &TriBall, fb: &TriBall, c: [f64; 3]) -> Option<TriBall> {
+    let delta = TriBall::combine(1.0, fa, -1.0, fb);
+    paper_multiplier(&jet(&delta, c), jet_noise(&delta), &jet(fb, c), c).map(|l| apply_paper(&delta, fb, l))
 }
 
 /// Gradient and Hessian at `c`, in `f64` (the multipliers only need to be
 /// good, not exact: any choice is rigorous).
 type Jet = ([f64; 2], [f64; 3]);
 
-fn jet<S: Num>(p: &TriBezier<S>, c: [f64; 3]) -> Jet {
-    let (_, g, h) = p.map(|x| x.to_f64()).jet2(&c);
+fn jet(p: &TriBall, c: [f64; 3]) -> Jet {
+    let (_, g, h) = p.jet2(&c);
     (g, h)
+}
+
+/// An estimate `(e₁, e₂)` of how far [`TriBall::jet2`]'s first and second
+/// partials (at a point of the triangle) can be from those of a member of
+/// the ball: the partials' coefficients are differences of 2 and 4
+/// coefficients times `n` and `n(n − 1)`, each within `r` plus the
+/// evaluation's rounding (`~2n u M`).
+fn jet_noise(p: &TriBall) -> (f64, f64) {
+    let n = p.degree() as f64;
+    let base = p.rad() + 2.0 * n * f64::EPSILON * p.max_mid();
+    (2.0 * n * base, 4.0 * n * (n - 1.0).max(0.0) * base)
 }
 
 /// `ℓ = (ℓ0, ℓ1, ℓ2)` of Eq. (7) from the jets of `Δ = f^α − f^β` (formed as
 /// a polynomial first, so that partials which vanish exactly stay 0 and a
 /// singular `A` is seen as such) and of `f^β`; `None` when `A` is
 /// numerically singular.
-fn paper_multiplier(jd: &Jet, jb: &Jet, c: [f64; 3]) -> Option<[f64; 3]> {
+///
+/// A row of `A` whose entries are all within a few times the rounding noise
+/// of `Δ`'s jet (`noise = (e₁, e₂)` for first and second partials,
+/// [`jet_noise`]) is zero: `A` is singular. (In Example 2 `Δ` depends on `u`
+/// alone and the third row vanishes exactly; its computed entries are
+/// rounding noise, which a pivot test relative to the row itself would
+/// accept, and `ℓ` would be meaningless.)
+fn paper_multiplier(jd: &Jet, noise: (f64, f64), jb: &Jet, c: [f64; 3]) -> Option<[f64; 3]> {
     let [du, dv] = jd.0;
     let [duu, duv, dvv] = jd.1;
     let rhs = [-jb.1[0], -jb.1[1], -jb.1[2]];
@@ -135,15 +144,29 @@ fn paper_multiplier(jd: &Jet, jb: &Jet, c: [f64; 3]) -> Option<[f64; 3]> {
         [duv, u * duv + dv, v * duv + du],
         [dvv, u * dvv, v * dvv + 2.0 * dv],
     ];
+    let (e1, e2) = noise;
+    let (ua, va) = (u.abs(), v.abs());
+    let row_noise = [
+        [e2, ua * e2 + 2.0 * e1, va * e2],
+        [e2, ua * e2 + e1, va * e2 + e1],
+        [e2, ua * e2, va * e2 + 2.0 * e1],
+    ];
+    let zero_row = a
+        .iter()
+        .zip(&row_noise)
+        .any(|(row, noise)| row.iter().zip(noise).all(|(x, e)| x.abs() <= 8.0 * e));
+    if zero_row {
+        return None;
+    }
     let l = solve3(a, rhs)?;
     (!l.iter().any(|x| !x.is_finite() || x.abs() > 1e8)).then_some(l)
 }
 
-/// `f̂ = ℓ Δ + f^β` in the kernel's arithmetic.
-fn apply_paper<S: Num>(delta: &TriBezier<S>, fb: &TriBezier<S>, l: [f64; 3]) -> TriBezier<S> {
+/// `f̂ = ℓ Δ + f^β` in ball arithmetic.
+fn apply_paper(delta: &TriBall, fb: &TriBall, l: [f64; 3]) -> TriBall {
     // ℓ as a degree-1 BB polynomial: values at V3 (0,0), V1 (1,0), V2 (0,1).
-    let ell = TriBezier::new(1, vec![S::pt(l[0]), S::pt(l[0] + l[1]), S::pt(l[0] + l[2])]).expect("three coefficients");
-    ell.mul(delta).add(fb)
+    let ell = [l[0], l[0] + l[1], l[0] + l[2]];
+    TriBall::linear_combination(ell, delta, [1.0; 3], fb)
 }
 
 /// The generalised preprocessing used when Eq. (8)'s `A` is singular:
@@ -160,7 +183,7 @@ fn apply_paper<S: Num>(delta: &TriBezier<S>, fb: &TriBezier<S>, l: [f64; 3]) -> 
 /// which is singular for all of Examples 1 and 2 (there `f − g` is linear,
 /// respectively a function of `u` alone). Rigor is as for [`preprocess`]:
 /// every root of `{f^α, f^β}` is a root of `{f̂, f^β}`.
-pub fn preprocess_general<S: Num>(fa: &TriBezier<S>, fb: &TriBezier<S>, c: [f64; 3]) -> Option<TriBezier<S>> {
+pub fn preprocess_general(fa: &TriBall, fb: &TriBall, c: [f64; 3]) -> Option<TriBall> {
     general_multipliers(&jet(fa, c), &jet(fb, c)).map(|x| apply_general(fa, fb, x, c))
 }
 
@@ -186,17 +209,15 @@ fn general_multipliers(ja: &Jet, jb: &Jet) -> Option<[f64; 5]> {
     (!x.iter().any(|v| !v.is_finite() || v.abs() > 1e8)).then_some(x)
 }
 
-/// `f̂ = ℓ f^α + m f^β` in the kernel's arithmetic.
-fn apply_general<S: Num>(fa: &TriBezier<S>, fb: &TriBezier<S>, x: [f64; 5], c: [f64; 3]) -> TriBezier<S> {
+/// `f̂ = ℓ f^α + m f^β` in ball arithmetic.
+fn apply_general(fa: &TriBall, fb: &TriBall, x: [f64; 5], c: [f64; 3]) -> TriBall {
     let (cs, ct) = (c[0], c[1]);
     // A linear polynomial a + b1 (s − cs) + b2 (t − ct) in BB form: values at V3, V1, V2.
     let linear = |a: f64, b1: f64, b2: f64| {
-        let at = |s: f64, t: f64| S::pt(a + b1 * (s - cs) + b2 * (t - ct));
-        TriBezier::new(1, vec![at(0.0, 0.0), at(1.0, 0.0), at(0.0, 1.0)]).expect("three coefficients")
+        let at = |s: f64, t: f64| a + b1 * (s - cs) + b2 * (t - ct);
+        [at(0.0, 0.0), at(1.0, 0.0), at(0.0, 1.0)]
     };
-    let ell = linear(1.0, x[1], x[2]);
-    let m = linear(x[0], x[3], x[4]);
-    ell.mul(fa).add(&m.mul(fb))
+    TriBall::linear_combination(linear(1.0, x[1], x[2]), fa, linear(x[0], x[3], x[4]), fb)
 }
 
 /// The left singular vector of the smallest singular value of the 2×2
@@ -275,69 +296,63 @@ pub(crate) fn gauss<const N: usize>(mut a: [[f64; N]; N], mut b: [f64; N], pivot
 }
 
 /// The width `2δ / |∇l|` of a fat line's strip in local coordinates (∞ for
-/// a constant `l`).
-fn strip_width<S: Num>(fat: &Fat<S>) -> f64 {
-    match fat {
-        Fat::Line(l, d) => {
-            let g = l.c[1].to_f64().hypot(l.c[2].to_f64());
-            if g > 0.0 {
-                2.0 * d / g
-            } else {
-                f64::INFINITY
-            }
-        }
-        Fat::Conic(..) => f64::INFINITY,
+/// a constant approximant), from the float approximant.
+fn strip_width(red: &Reduced) -> f64 {
+    let a = &red.approx;
+    let g = (a[1] - a[0]).hypot(a[2] - a[0]);
+    if g > 0.0 {
+        2.0 * red.delta / g
+    } else {
+        f64::INFINITY
     }
 }
 
 /// One clipping computation on a tri-box (local coordinates): the bounds
 /// `u_min, v_min, w_min` for `method`, or `Empty` when the fat regions (or
 /// hulls) prove the tri-box root-free. `incenter` is the tri-box incenter in
-/// its own barycentric coordinates (for `Hc`).
-pub fn clip_bounds<S: Num>(method: Method, fa: &TriBezier<S>, fb: &TriBezier<S>, incenter: [f64; 3]) -> ClipBounds {
-    clip_bounds_with(method, fa, fb, incenter, 0.0)
-}
-
-/// [`clip_bounds`] for coefficients with absolute rounding noise `noise`
-/// that the kernel does not track (plain `f64`; the rigorous kernels ignore
-/// it): every fat curve's `δ` is widened by the noise of its polynomial.
-pub fn clip_bounds_with<S: Num>(
-    method: Method,
-    fa: &TriBezier<S>,
-    fb: &TriBezier<S>,
-    incenter: [f64; 3],
-    noise: f64,
-) -> ClipBounds {
-    let fat = |p: &TriBezier<S>, k: usize| fat_curve_with(p, k, noise);
+/// its own barycentric coordinates (for `Hc`). The geometry runs in `G`:
+/// [`GeoIv`](super::num::GeoIv) for proofs, `f64` for the plain iteration.
+pub fn clip_bounds<G: Geo>(method: Method, fa: &TriBall, fb: &TriBall, incenter: [f64; 3]) -> ClipBounds {
+    let unclipped = ClipBounds::Keep([0.0; 3]);
+    let fat = |p: &TriBall, k: usize| fat_curve::<G>(p, k);
+    let pair = |a: Option<Fat<G>>, b: Option<Fat<G>>| match (a, b) {
+        (Some(a), Some(b)) => clip_against_fat_curves(&[a, b]),
+        _ => unclipped,
+    };
     match method {
-        Method::Bezier => intersect_bounds(bezier_bounds(fa), bezier_bounds(fb), S::KERNEL),
-        Method::Linear => clip_against_fat_curves(&[fat(fa, 1), fat(fb, 1)]),
-        Method::HcNoPre => clip_against_fat_curves(&[fat(fa, 1), fat(fb, 2)]),
+        Method::Bezier => intersect_bounds(
+            bezier_bounds(fa, G::RIGOROUS),
+            bezier_bounds(fb, G::RIGOROUS),
+            G::RIGOROUS,
+        ),
+        Method::Linear => pair(fat(fa, 1), fat(fb, 1)),
+        Method::HcNoPre => pair(fat(fa, 1), fat(fb, 2)),
         Method::Hc => {
-            let plain = fat(fa, 1);
-            let delta = fa.sub(fb);
-            let jb = jet(fb, incenter);
-            // f̂ and its noise: |ℓ|·(noise of Δ = 2·noise) + noise for the
-            // paper's form, (|ℓ| + |m|)·noise for the general one.
-            let fhat = match paper_multiplier(&jet(&delta, incenter), &jb, incenter) {
-                Some(l) => {
-                    let size = l[0].abs() + l[1].abs() + l[2].abs();
-                    Some((apply_paper(&delta, fb, l), (2.0 * size + 1.0) * noise))
-                }
-                None => general_multipliers(&jet(fa, incenter), &jb).map(|x| {
-                    let size = 2.0 + x.iter().map(|v| v.abs()).sum::<f64>();
-                    (apply_general(fa, fb, x, incenter), size * noise)
-                }),
-            };
+            let plain = fa.reduce(1);
+            let fhat = preprocessed(fa, fb, incenter).map(|p| {
+                let red = p.reduce(1);
+                (p, red)
+            });
             // The preprocessed line wins asymptotically (δ = O(h³)), but on large
             // tri-boxes, or at the rounding floor where the local Hessians are
             // noise, f̂ can be worse than f^α: keep the narrower strip. Both are
             // rigorous, so the choice affects speed only.
-            let line = match fhat.map(|(p, n)| fat_curve_with(&p, 1, n)) {
-                Some(pre) if strip_width(&pre) < strip_width(&plain) => pre,
-                _ => plain,
+            let line = match &fhat {
+                Some((p, red)) if strip_width(red) < strip_width(&plain) => to_fat::<G>(red, p),
+                _ => to_fat::<G>(&plain, fa),
             };
-            clip_against_fat_curves(&[line, fat(fb, 2)])
+            pair(line, fat(fb, 2))
         }
+    }
+}
+
+/// `f̂` of [`preprocess`], or of [`preprocess_general`] where Eq. (8)'s `A`
+/// is singular; `None` if neither exists.
+fn preprocessed(fa: &TriBall, fb: &TriBall, c: [f64; 3]) -> Option<TriBall> {
+    let delta = TriBall::combine(1.0, fa, -1.0, fb);
+    let jb = jet(fb, c);
+    match paper_multiplier(&jet(&delta, c), jet_noise(&delta), &jb, c) {
+        Some(l) => Some(apply_paper(&delta, fb, l)),
+        None => general_multipliers(&jet(fa, c), &jb).map(|x| apply_general(fa, fb, x, c)),
     }
 }

@@ -24,13 +24,14 @@ pub mod settle;
 pub mod tribox;
 
 use crate::error::{Error, Result};
-use crate::poly::{Polynomial, TensorBezier, TriBezier};
+use crate::poly::{Polynomial, TensorBezier, TriBall, TriBezier};
 use crate::scalar::{interval, point, Scalar};
 pub use driver::SplitRule;
 use driver::{path_diameters, Counters, ExactPair, Leaf, Limits, Probe};
 use inari::Interval;
 use krawczyk::{Bivariate, IBox, System, Verdict};
 pub use method::Method;
+use num::GeoIv;
 use num_rational::BigRational;
 
 /// The domain of the unknowns.
@@ -702,7 +703,8 @@ fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &Solv
                 Verdict::Undecided(_) => Probe::Undecided,
             }
         };
-        let run = driver::run(f, g, exact.as_ref(), &limits, &mut probe);
+        let ball = |p: &TriBezier<Interval>| TriBall::enclose(p).unwrap_or_else(|_| TriBall::unbounded(p.degree()));
+        let run = driver::run::<GeoIv>(&ball(f), &ball(g), exact.as_ref(), &limits, &mut probe);
         add_counters(&mut stats.run, &run.counters);
         stats.krawczyk_calls += run.counters.probes;
         stats.max_level = stats
@@ -976,6 +978,8 @@ fn add_counters(a: &mut Counters, b: &Counters) {
         clip_exclusions,
         probes,
         probe_exclusions,
+        compensated_restarts,
+        compensated_boxes,
         exact_restarts,
         exact_boxes,
         role_swaps,
@@ -987,12 +991,14 @@ fn add_counters(a: &mut Counters, b: &Counters) {
     a.clip_exclusions += clip_exclusions;
     a.probes += probes;
     a.probe_exclusions += probe_exclusions;
+    a.compensated_restarts += compensated_restarts;
+    a.compensated_boxes += compensated_boxes;
     a.exact_restarts += exact_restarts;
     a.exact_boxes += exact_boxes;
     a.role_swaps += role_swaps;
 }
 
-fn local_box<S>(leaf: &Leaf<S>) -> IBox {
+fn local_box(leaf: &Leaf) -> IBox {
     tribox::box_of(&leaf.tb)
 }
 
@@ -1095,9 +1101,14 @@ pub fn solve_triangle_f64(f: &TriBezier<f64>, g: &TriBezier<f64>, opts: &SolveOp
         ..opts.limits()
     };
     let n = f.degree().max(g.degree());
-    let run = driver::run(&f.elevate_cached(n), &g.elevate_cached(n), None, &limits, &mut |_| {
-        Probe::Undecided
-    });
+    let (f, g) = (f.elevate_cached(n), g.elevate_cached(n));
+    let run = driver::run::<f64>(
+        &TriBall::from_points(&f),
+        &TriBall::from_points(&g),
+        None,
+        &limits,
+        &mut |_| Probe::Undecided,
+    );
     run.leaves.iter().map(|l| l.tb.point_at([1.0 / 3.0; 3])).collect()
 }
 

@@ -1,116 +1,17 @@
-//! The operations the clipping geometry needs beyond [`Scalar`]: square roots,
-//! two-piece division, "possibly" comparisons.
+//! The arithmetic of the clipping geometry ([`Geo`]): field operations, square
+//! roots, two-piece division, "possibly" comparisons.
 //!
-//! Two kernels: [`Interval`] (every answer is a proof about all members) and
+//! Three kernels: [`GeoIv`] (the certified solver's: every answer is a proof
+//! about all members, with inari's endpoints but no rounding-mode switches),
+//! [`Interval`] (inari itself, the reference `GeoIv` is tested against) and
 //! `f64` (the same iteration without proofs, used to measure the cost of
 //! rigor). The `possibly_*` predicates are the conservative direction: for
 //! intervals they answer `true` unless the opposite is proven.
-//!
-//! The fat-curve candidate geometry (`fatcurve`) runs on a separate, smaller
-//! kernel, [`Geo`]: `f64` for the float kernel, and for the interval kernel
-//! [`GeoIv`], branchless outward-rounded intervals that need no rounding-mode
-//! switches (see `crate::scalar::iv` for why each operation encloses the exact
-//! result). Its enclosures are a few floats wider than inari's, and just as
-//! rigorous.
 
 use crate::scalar::iv::{down, up, Iv};
 use crate::scalar::{interval, point, Scalar, Sign};
 use inari::Interval;
 use std::ops::{Add, Div, Mul, Neg, Sub};
-
-/// A kernel the clipping driver runs on.
-pub trait Num: Scalar + Copy {
-    /// The kernel of the fat-curve candidate geometry for this kernel.
-    type Geo: Geo;
-    /// The point value `x` (finite).
-    fn pt(x: f64) -> Self;
-    /// `self` in the geometry kernel (an enclosure of it, for intervals).
-    fn geo(self) -> Self::Geo;
-    /// `√(x ∩ [0, ∞))`, or `None` when `x < 0` provably.
-    fn sqrt_nonneg(self) -> Option<Self>;
-    /// `num / den` as at most two pieces (two when `den` straddles 0).
-    /// Pieces are `None` when empty.
-    fn div_pieces(num: Self, den: Self) -> [Option<Self>; 2];
-    /// `self ∩ [lo, hi]`, `None` if empty.
-    fn clamp_to(self, lo: f64, hi: f64) -> Option<Self>;
-    /// Provably non-zero.
-    fn nonzero(self) -> bool;
-    /// Possibly `≤ x` (some member is).
-    fn possibly_le(self, x: f64) -> bool {
-        self.lower() <= x
-    }
-    /// Possibly `≥ x` (some member is).
-    fn possibly_ge(self, x: f64) -> bool {
-        self.upper() >= x
-    }
-    /// The smallest interval containing both.
-    fn hull(self, other: Self) -> Self;
-}
-
-impl Num for Interval {
-    type Geo = GeoIv;
-    fn pt(x: f64) -> Self {
-        point(x)
-    }
-    fn geo(self) -> GeoIv {
-        GeoIv::of(self)
-    }
-    fn sqrt_nonneg(self) -> Option<Self> {
-        let nonneg = self.intersection(interval(0.0, f64::INFINITY));
-        (!nonneg.is_empty()).then(|| nonneg.sqrt())
-    }
-    fn div_pieces(num: Self, den: Self) -> [Option<Self>; 2] {
-        den.mul_rev_to_pair(num).map(|p| (!p.is_empty()).then_some(p))
-    }
-    fn clamp_to(self, lo: f64, hi: f64) -> Option<Self> {
-        let c = self.intersection(interval(lo, hi));
-        (!c.is_empty()).then_some(c)
-    }
-    fn nonzero(self) -> bool {
-        !self.contains(0.0)
-    }
-    fn hull(self, other: Self) -> Self {
-        self.convex_hull(other)
-    }
-}
-
-impl Num for f64 {
-    type Geo = f64;
-    fn pt(x: f64) -> Self {
-        x
-    }
-    fn geo(self) -> f64 {
-        self
-    }
-    fn sqrt_nonneg(self) -> Option<Self> {
-        (self >= 0.0).then(|| self.sqrt())
-    }
-    fn div_pieces(num: Self, den: Self) -> [Option<Self>; 2] {
-        let q = num / den;
-        [q.is_finite().then_some(q), None]
-    }
-    fn clamp_to(self, lo: f64, hi: f64) -> Option<Self> {
-        // No enclosure to intersect: accept values a rounding error outside.
-        let tol = 1e-12 * (hi - lo).abs().max(1.0);
-        (lo - tol <= self && self <= hi + tol).then(|| self.clamp(lo, hi))
-    }
-    fn nonzero(self) -> bool {
-        self != 0.0
-    }
-    fn hull(self, other: Self) -> Self {
-        // A float cannot hold a range; the midpoint is the f64 proposal.
-        0.5 * (self + other)
-    }
-    // A candidate computed on a constraint curve evaluates to that curve's
-    // level up to rounding: without an enclosure, compare with a relative
-    // tolerance, or boundary points (all the critical points) are lost.
-    fn possibly_le(self, x: f64) -> bool {
-        self <= x + 1e-9 * (self.abs() + x.abs()) + f64::MIN_POSITIVE
-    }
-    fn possibly_ge(self, x: f64) -> bool {
-        self >= x - 1e-9 * (self.abs() + x.abs()) - f64::MIN_POSITIVE
-    }
-}
 
 /// The arithmetic of the fat-curve candidate geometry: the field operations
 /// and the few queries the candidate enumeration makes. For a rigorous kernel
@@ -176,25 +77,32 @@ impl Geo for f64 {
         Scalar::sign_class(&self)
     }
     fn nonzero(self) -> bool {
-        Num::nonzero(self)
+        self != 0.0
     }
     fn sqrt_nonneg(self) -> Option<Self> {
-        Num::sqrt_nonneg(self)
+        (self >= 0.0).then(|| self.sqrt())
     }
     fn div_pieces(num: Self, den: Self) -> [Option<Self>; 2] {
-        <f64 as Num>::div_pieces(num, den)
+        let q = num / den;
+        [q.is_finite().then_some(q), None]
     }
     fn clamp_to(self, lo: f64, hi: f64) -> Option<Self> {
-        Num::clamp_to(self, lo, hi)
+        // No enclosure to intersect: accept values a rounding error outside.
+        let tol = 1e-12 * (hi - lo).abs().max(1.0);
+        (lo - tol <= self && self <= hi + tol).then(|| self.clamp(lo, hi))
     }
     fn hull(self, other: Self) -> Self {
-        Num::hull(self, other)
+        // A float cannot hold a range; the midpoint is the f64 proposal.
+        0.5 * (self + other)
     }
+    // A candidate computed on a constraint curve evaluates to that curve's
+    // level up to rounding: without an enclosure, compare with a relative
+    // tolerance, or boundary points (all the critical points) are lost.
     fn possibly_le(self, x: f64) -> bool {
-        Num::possibly_le(self, x)
+        self <= x + 1e-9 * (self.abs() + x.abs()) + f64::MIN_POSITIVE
     }
     fn possibly_ge(self, x: f64) -> bool {
-        Num::possibly_ge(self, x)
+        self >= x - 1e-9 * (self.abs() + x.abs()) - f64::MIN_POSITIVE
     }
 }
 
@@ -225,19 +133,21 @@ impl Geo for Interval {
         Scalar::sign_class(&self)
     }
     fn nonzero(self) -> bool {
-        Num::nonzero(self)
+        !self.contains(0.0)
     }
     fn sqrt_nonneg(self) -> Option<Self> {
-        Num::sqrt_nonneg(self)
+        let nonneg = self.intersection(interval(0.0, f64::INFINITY));
+        (!nonneg.is_empty()).then(|| nonneg.sqrt())
     }
     fn div_pieces(num: Self, den: Self) -> [Option<Self>; 2] {
-        <Interval as Num>::div_pieces(num, den)
+        den.mul_rev_to_pair(num).map(|p| (!p.is_empty()).then_some(p))
     }
     fn clamp_to(self, lo: f64, hi: f64) -> Option<Self> {
-        Num::clamp_to(self, lo, hi)
+        let c = self.intersection(interval(lo, hi));
+        (!c.is_empty()).then_some(c)
     }
     fn hull(self, other: Self) -> Self {
-        Num::hull(self, other)
+        self.convex_hull(other)
     }
 }
 
@@ -674,7 +584,7 @@ mod tests {
         for &x in &ivs {
             let gx = GeoIv::of(x);
             assert!(same(-gx, -x));
-            match (<Interval as Num>::sqrt_nonneg(x), Geo::sqrt_nonneg(gx)) {
+            match (<Interval as Geo>::sqrt_nonneg(x), Geo::sqrt_nonneg(gx)) {
                 (Some(r), Some(g)) => assert!(if in_range(x) { same(g, r) } else { contains(g, r) }, "sqrt {x:?}"),
                 (r, g) => assert!(r.is_none() && g.is_none(), "sqrt {x:?}"),
             }
@@ -693,7 +603,7 @@ mod tests {
                 }
                 // Every piece of inari's lies in a piece of ours.
                 let fast = <GeoIv as Geo>::div_pieces(gx, gy);
-                for p in <Interval as Num>::div_pieces(x, y).into_iter().flatten() {
+                for p in <Interval as Geo>::div_pieces(x, y).into_iter().flatten() {
                     assert!(fast.iter().flatten().any(|&f| contains(f, p)), "{x:?} / {y:?} pieces");
                 }
             }

@@ -14,6 +14,7 @@
 //! until each is proven on or outside its edge, so the four children cover the
 //! parent.
 
+use super::num::{Geo, GeoIv};
 use crate::scalar::{interval, point};
 use inari::Interval;
 
@@ -35,13 +36,19 @@ fn norm(a: Pt) -> f64 {
     a[0].hypot(a[1])
 }
 
-/// `orient(a, b, c)`: twice the signed area, enclosed in an interval.
-pub fn orient(a: [Interval; 2], b: [Interval; 2], c: [Interval; 2]) -> Interval {
+/// `orient(a, b, c)`: twice the signed area, enclosed (inari's endpoints,
+/// through [`GeoIv`]).
+pub fn orient(a: [GeoIv; 2], b: [GeoIv; 2], c: [GeoIv; 2]) -> GeoIv {
     (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
 }
 
-fn ipt(p: Pt) -> [Interval; 2] {
-    [point(p[0]), point(p[1])]
+fn ipt(p: Pt) -> [GeoIv; 2] {
+    [GeoIv::pt(p[0]), GeoIv::pt(p[1])]
+}
+
+/// The midpoint of an enclosure, rounded to nearest.
+fn mid(x: GeoIv) -> f64 {
+    0.5 * x.lower() + 0.5 * x.upper()
 }
 
 impl TriBox {
@@ -113,7 +120,7 @@ impl TriBox {
     /// Provably counter-clockwise with positive area.
     pub fn is_proper(&self) -> bool {
         let [a, b, c] = self.verts.map(ipt);
-        orient(a, b, c).inf() > 0.0
+        orient(a, b, c).lower() > 0.0
     }
 
     /// The triangle `{u ≥ mins[0], v ≥ mins[1], w ≥ mins[2]}` (local
@@ -121,18 +128,15 @@ impl TriBox {
     /// vertices proven to contain it. `None` if no such triangle could be
     /// verified (the caller then keeps `self`).
     pub fn clip(&self, mins: [f64; 3]) -> Option<TriBox> {
-        let [a, b, c] = mins.map(point);
-        let one = point(1.0);
+        let [a, b, c] = mins.map(GeoIv::pt);
+        let one = GeoIv::pt(1.0);
         let corners_bary = [[one - b - c, b, c], [a, one - a - c, c], [a, b, one - a - b]];
         let verts = self.verts.map(ipt);
-        let corners: Vec<[Interval; 2]> = corners_bary
-            .iter()
-            .map(|w| {
-                let s = w[0] * verts[0][0] + w[1] * verts[1][0] + w[2] * verts[2][0];
-                let t = w[0] * verts[0][1] + w[1] * verts[1][1] + w[2] * verts[2][1];
-                [s, t]
-            })
-            .collect();
+        let corners: [[GeoIv; 2]; 3] = corners_bary.map(|w| {
+            let s = w[0] * verts[0][0] + w[1] * verts[1][0] + w[2] * verts[2][0];
+            let t = w[0] * verts[0][1] + w[1] * verts[1][1] + w[2] * verts[2][1];
+            [s, t]
+        });
         // K is homothetic to this tri-box with ratio ρ = 1 − Σ mins. Propose
         // c_K + λ (V_i − c_T) with λ a little above ρ: each edge then moves out by
         // (λ − ρ)·r (r the inradius), which must cover the corners' uncertainty.
@@ -146,13 +150,17 @@ impl TriBox {
                 pts.iter().map(|p| p[1]).sum::<f64>() / n,
             ]
         };
-        let ck = centre(&corners.iter().map(|k| [k[0].mid(), k[1].mid()]).collect::<Vec<_>>());
+        let ck = centre(&corners.map(|k| [mid(k[0]), mid(k[1])]));
         let ct = centre(&self.verts);
         let r = self.inradius();
         if r.is_nan() || r <= 0.0 {
             return None;
         }
-        let spread = corners.iter().flatten().map(|c| c.wid()).fold(0.0, f64::max);
+        let spread = corners
+            .iter()
+            .flatten()
+            .map(|c| crate::scalar::iv::up(c.upper() - c.lower()))
+            .fold(0.0, f64::max);
         // Rounding scale: coordinates near the tri-box, never below the
         // tri-box's own size (a clip to a point at the origin still needs a
         // triangle of representable, provable size around it).
@@ -182,9 +190,35 @@ impl TriBox {
     }
 
     /// Every point of the box `k` lies in the closed triangle (proven).
-    fn contains_enclosure(&self, k: [Interval; 2]) -> bool {
+    fn contains_enclosure(&self, k: [GeoIv; 2]) -> bool {
         let [a, b, c] = self.verts.map(ipt);
-        orient(a, b, k).inf() >= 0.0 && orient(b, c, k).inf() >= 0.0 && orient(c, a, k).inf() >= 0.0
+        orient(a, b, k).lower() >= 0.0 && orient(b, c, k).lower() >= 0.0 && orient(c, a, k).lower() >= 0.0
+    }
+
+    /// [`TriBox::clip`] without the proof, for the plain `f64` iteration: the
+    /// triangle `{u ≥ mins[0], v ≥ mins[1], w ≥ mins[2]}` as the homothetic
+    /// image of this one (ratio `1 − Σ mins`), rounded to nearest. `None` if
+    /// it has no area.
+    pub fn clip_unverified(&self, mins: [f64; 3]) -> Option<TriBox> {
+        let rho = 1.0 - (mins[0] + mins[1] + mins[2]);
+        if rho.is_nan() || rho <= 0.0 {
+            return None;
+        }
+        let [p, q, r] = self.verts;
+        let corner = |w: [f64; 3]| {
+            [
+                w[0] * p[0] + w[1] * q[0] + w[2] * r[0],
+                w[0] * p[1] + w[1] * q[1] + w[2] * r[1],
+            ]
+        };
+        let [a, b, c] = mins;
+        let verts = [
+            corner([1.0 - b - c, b, c]),
+            corner([a, 1.0 - a - c, c]),
+            corner([a, b, 1.0 - a - b]),
+        ];
+        let cand = TriBox { verts };
+        (cand.diam() > 0.0).then_some(cand)
     }
 
     /// The four children of the 1-to-4 split, in the order corner `V1`, corner
@@ -220,7 +254,7 @@ fn outward_midpoint(a: Pt, b: Pt) -> Option<Pt> {
     let outward = [d[1] / len, -d[0] / len];
     let mut step = f64::EPSILON * (m[0].abs().max(m[1].abs()).max(f64::MIN_POSITIVE));
     for _ in 0..8 {
-        if orient(ipt(a), ipt(b), ipt(m)).sup() <= 0.0 {
+        if orient(ipt(a), ipt(b), ipt(m)).upper() <= 0.0 {
             return Some(m);
         }
         m = [m[0] + outward[0] * step, m[1] + outward[1] * step];

@@ -1,0 +1,1049 @@
+//! Ball polynomials: triangular BB polynomials with `f64` coefficients and one
+//! rigorous radius — the certified solver's working form.
+//!
+//! # Definition
+//! A [`TriBall`] of degree `n` with midpoints `m_ijk` and radius `r ≥ 0`
+//! stands for the set of polynomials
+//! ```text
+//! { Σ_{i+j+k=n} c_ijk B_ijk(u, v, w) : |c_ijk − m_ijk| ≤ r for all ijk }
+//! ```
+//! (Liu et al. 2016, Eq. (1)–(2); storage order as [`TriBezier`]). Every
+//! operation returns a ball that contains the exact result of the operation
+//! applied to *every* member of its inputs — the same promise as interval
+//! coefficients, with one radius per polynomial instead of two endpoints per
+//! coefficient (the idea of Arb's balls, at the level of a polynomial).
+//!
+//! # Why one radius
+//! The midpoints are computed in plain `f64` — exactly the floating-point work
+//! of a solver without proofs — and the radius grows by an *a priori* bound of
+//! that work's rounding, derived once per operation below. Rigor then costs
+//! `O(1)` per operation instead of a multiple of every arithmetic operation.
+//! The bounds are of the same size as the widths interval arithmetic would
+//! carry: the rounding of a de Casteljau step is a few units in the last place
+//! of the net's largest value, for every coefficient alike.
+//!
+//! # Rounding model
+//! `u = 2⁻⁵³`. For round-to-nearest, `|fl(x) − x| ≤ u·|fl(x)|` and
+//! `≤ u·|x|` when no underflow occurs; an underflowing operation errs by at
+//! most `2⁻¹⁰⁷⁵` absolutely. Each bound below is computed in `f64` from
+//! non-negative terms and then multiplied by `1 + 32u` and increased by a
+//! small absolute term ([`inflate`]), which covers the rounding of the few
+//! operations that compute the bound itself and every underflow of the
+//! operation (at most `2⁻¹⁰⁷⁵` each, far below the absolute term for the
+//! operation counts here).
+//!
+//! Midpoints that overflow make the ball unbounded (`r = ∞`, or a NaN
+//! midpoint): its queries then prove nothing, which is sound. The solver
+//! scales its input by a power of two first ([`TriBall::normalized`]), so
+//! this only happens for absurd dynamic ranges.
+
+use super::l2;
+use super::triangle::{tri_index, tri_len, Bary, TriBezier};
+use crate::error::{Error, Result};
+use crate::scalar::{iv, MatrixKey, Scalar, Sign};
+use inari::Interval;
+use num_rational::BigRational;
+use smallvec::SmallVec;
+use std::sync::Arc;
+
+/// Coefficients stored inline up to degree 7 (36 values); larger degrees
+/// spill to the heap.
+pub type Coeffs = SmallVec<[f64; 36]>;
+
+/// The unit roundoff `2⁻⁵³`.
+pub const U: f64 = f64::EPSILON / 2.0;
+
+/// `x` increased so that it bounds the exact value of a bound that was
+/// computed as `x` by at most 30 roundings of non-negative terms (each a
+/// relative `u`), plus underflow: `x·(1 + 32u) + 2⁻¹⁰⁶⁰`.
+#[inline]
+fn inflate(x: f64) -> f64 {
+    x * (1.0 + 32.0 * U) + 1e-319
+}
+
+/// `γ_k = k u / (1 − k u)`, Higham's bound for `k` roundings (an upper bound,
+/// computed with margin).
+#[inline]
+fn gamma(k: usize) -> f64 {
+    let ku = k as f64 * U;
+    ku / (1.0 - ku) * (1.0 + 4.0 * U)
+}
+
+/// A triangular BB polynomial with `f64` midpoints and one radius (module docs).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TriBall {
+    degree: usize,
+    mid: Coeffs,
+    rad: f64,
+}
+
+/// The approximant of [`TriBall::reduce`] and its rigorous distance bound.
+#[derive(Clone, Debug)]
+pub struct Reduced {
+    /// The approximant's BB coefficients, degree `k`: any float polynomial
+    /// (the L2-best one of the midpoints, rounded).
+    pub approx: Coeffs,
+    /// `δ` with `|f − approx| ≤ δ` on the whole triangle for every member `f`
+    /// of the ball (an upper bound, rigorous).
+    pub delta: f64,
+}
+
+impl TriBall {
+    /// The ball with midpoints `mid` (storage order) and radius `rad`. Errors on
+    /// the wrong count, a non-finite midpoint or a negative or NaN radius.
+    pub fn new(degree: usize, mid: &[f64], rad: f64) -> Result<Self> {
+        if mid.len() != tri_len(degree) {
+            return Err(Error::Shape(format!(
+                "degree {degree} triangle needs {} coefficients, got {}",
+                tri_len(degree),
+                mid.len()
+            )));
+        }
+        if mid.iter().any(|x| !x.is_finite()) || rad.is_nan() || rad < 0.0 {
+            return Err(Error::NonFinite(
+                "ball polynomial with a non-finite coefficient or radius".into(),
+            ));
+        }
+        Ok(Self {
+            degree,
+            mid: mid.iter().copied().collect(),
+            rad,
+        })
+    }
+
+    /// A ball from parts already checked by the caller.
+    fn new_raw(degree: usize, mid: Coeffs, rad: f64) -> Self {
+        Self { degree, mid, rad }
+    }
+
+    /// The float polynomial `p` itself (radius 0).
+    pub fn from_points(p: &TriBezier<f64>) -> Self {
+        Self {
+            degree: p.degree(),
+            mid: p.coeffs().iter().copied().collect(),
+            rad: 0.0,
+        }
+    }
+
+    /// The smallest ball around the interval midpoints that contains every
+    /// coefficient interval of `p`. Errors on an unbounded coefficient.
+    pub fn enclose(p: &TriBezier<Interval>) -> Result<Self> {
+        let mut mid = Coeffs::with_capacity(p.coeffs().len());
+        let mut rad = 0.0f64;
+        for c in p.coeffs() {
+            let (lo, hi) = (c.inf(), c.sup());
+            if !(lo.is_finite() && hi.is_finite()) {
+                return Err(Error::NonFinite(format!("coefficient [{lo:e}, {hi:e}] is not bounded")));
+            }
+            let m = c.mid();
+            if lo != hi {
+                // The differences are rounded: `up` makes them upper bounds.
+                rad = rad.max(iv::up(hi - m)).max(iv::up(m - lo));
+            }
+            mid.push(m);
+        }
+        Ok(Self {
+            degree: p.degree(),
+            mid,
+            rad,
+        })
+    }
+
+    /// The ball around the nearest floats of exact coefficients (storage order,
+    /// degree `n`): each is enclosed in its tightest float interval
+    /// ([`Scalar::from_rational`]), so exact floats give radius 0.
+    pub fn enclose_rationals(n: usize, coeffs: &[BigRational]) -> Self {
+        let p = TriBezier::from_fn(n, |i, j, _| Interval::from_rational(&coeffs[tri_index(n, i, j)]));
+        // Tight enclosures of finite rationals are bounded unless they overflow.
+        Self::enclose(&p).unwrap_or_else(|_| Self::unbounded(n))
+    }
+
+    /// The ball that contains every polynomial of degree `n` (radius `∞`).
+    pub fn unbounded(n: usize) -> Self {
+        Self {
+            degree: n,
+            mid: std::iter::repeat_n(0.0, tri_len(n)).collect(),
+            rad: f64::INFINITY,
+        }
+    }
+
+    /// The total degree `n`.
+    pub fn degree(&self) -> usize {
+        self.degree
+    }
+
+    /// The midpoints in storage order.
+    pub fn mid(&self) -> &[f64] {
+        &self.mid
+    }
+
+    /// The radius.
+    pub fn rad(&self) -> f64 {
+        self.rad
+    }
+
+    /// `max |m_ijk|` (0 for no coefficients; NaN-free midpoints assumed).
+    pub fn max_mid(&self) -> f64 {
+        max_abs(&self.mid)
+    }
+
+    /// An upper bound of every member's largest coefficient magnitude:
+    /// `max |m| + r`, rounded up.
+    pub fn mag(&self) -> f64 {
+        iv::up(self.max_mid() + self.rad)
+    }
+
+    /// Rigorous bounds `[lo, hi]` of coefficient `idx` over the ball.
+    pub fn bounds(&self, idx: usize) -> (f64, f64) {
+        let m = self.mid[idx];
+        if self.rad == 0.0 {
+            (m, m)
+        } else {
+            (iv::down(m - self.rad), iv::up(m + self.rad))
+        }
+    }
+
+    /// The coefficients as intervals (for interoperation and tests).
+    pub fn to_intervals(&self) -> TriBezier<Interval> {
+        TriBezier::from_fn(self.degree, |i, j, _| {
+            let (lo, hi) = self.bounds(tri_index(self.degree, i, j));
+            crate::scalar::interval(lo, hi)
+        })
+    }
+
+    /// A strict sign shared by every coefficient of every member (check-sign,
+    /// Liu et al. 2016, §2.3.4): every `m > r`, or every `m < −r`. The float
+    /// comparisons are exact, so the answer is a proof: the polynomial has
+    /// that sign on the whole triangle.
+    pub fn strict_sign(&self) -> Option<Sign> {
+        let r = self.rad;
+        if self.mid.iter().all(|&m| m > r) {
+            Some(Sign::Positive)
+        } else if self.mid.iter().all(|&m| m < -r) {
+            Some(Sign::Negative)
+        } else {
+            None
+        }
+    }
+
+    /// Every coefficient's range contains 0 (`|m| ≤ r` for all, or a NaN):
+    /// the sign is lost to rounding on the whole triangle, and no sub-triangle
+    /// (whose coefficients are convex combinations) can recover it.
+    pub fn sign_lost(&self) -> bool {
+        let r = self.rad;
+        self.mid
+            .iter()
+            .all(|&m| m.abs().partial_cmp(&r) != Some(std::cmp::Ordering::Greater))
+    }
+
+    /// The same ball scaled by `2^e`: exact for the midpoints unless one
+    /// underflows, in which case the radius takes the (subnormal) loss.
+    pub fn scaled_pow2(&self, e: i32) -> Self {
+        let s = pow2(e);
+        let mut lossy = false;
+        let mid: Coeffs = self
+            .mid
+            .iter()
+            .map(|&m| {
+                let x = m * s;
+                lossy |= x * pow2(-e) != m;
+                x
+            })
+            .collect();
+        let rad = iv::up(self.rad * s) + if lossy { 2.0 * f64::from_bits(1) } else { 0.0 };
+        Self {
+            degree: self.degree,
+            mid,
+            rad,
+        }
+    }
+
+    /// The exponent `e` that brings `max(|m| + r)` of `balls` into `[1, 2)`,
+    /// so that products with the solver's bounded multipliers cannot overflow
+    /// (0 for all-zero balls). Scaling an equation by a positive constant does
+    /// not move its roots; one common factor keeps `f − g` (Liu et al.'s
+    /// preprocessing, Eq. (7)) the same polynomial up to that factor.
+    pub fn normalizing_exponent(balls: &[&TriBall]) -> i32 {
+        let m = balls.iter().map(|b| b.mag()).fold(0.0, f64::max);
+        if m > 0.0 && m.is_finite() {
+            -(m.log2().floor() as i32).clamp(-1000, 1000)
+        } else {
+            0
+        }
+    }
+
+    /// The polynomial on the sub-triangle with vertices `verts` (`(s, t)` in
+    /// this triangle's Cartesian coordinates, barycentric `(s, t, 1 − s − t)`):
+    /// coefficient `g_ijk` is the blossom `f[P1^i, P2^j, P3^k]`, computed by
+    /// `n` de Casteljau steps per coefficient (as [`TriBezier::subdivide`]).
+    ///
+    /// # Radius
+    /// With `w̃ = fl(fl(1 − s) − t)` per vertex, `e_w = u(|fl(1 − s)| + |w̃|)`
+    /// bounds `|w̃ − w|`. A step `x̃ = fl(s·a + fl(t·b + fl(w̃·c)))` (two FMAs
+    /// and a product) errs from the exact `s a + t b + w c` by at most
+    /// `3u·S·M + e_w·M`, where `M` bounds the magnitudes entering the step and
+    /// `S = |s| + |t| + |w̃|`; the exact map of the input radius is at most
+    /// `Ŝ·r` with `Ŝ = S + e_w`, and the computed values grow by at most
+    /// `S(1 + u)³` per step. Over the `n` steps of a coefficient (vertices of
+    /// the three kinds, so `S`, `e_w` are maxima over the vertices):
+    /// ```text
+    /// r' = Ŝⁿ r + n Ŝⁿ⁻¹ (3u Ŝ + e_w) M₀ (1 + u)³ⁿ,   M₀ = max |m|
+    /// ```
+    /// For a sub-triangle of the triangle (`S = 1`) this is
+    /// `r + n(3u + e_w) M₀`: a few ulps of the largest coefficient per step.
+    ///
+    /// Vertices outside the triangle extrapolate (`S > 1`); a non-finite
+    /// vertex gives the unbounded ball.
+    pub fn subdivide(&self, verts: &[[f64; 2]; 3]) -> Self {
+        let n = self.degree;
+        let mut s_max = 0.0f64;
+        let mut ew_max = 0.0f64;
+        let bary: [[f64; 3]; 3] = verts.map(|[s, t]| {
+            let one_minus_s = 1.0 - s;
+            let w = one_minus_s - t;
+            s_max = s_max.max(s.abs() + t.abs() + w.abs());
+            ew_max = ew_max.max(U * (one_minus_s.abs() + w.abs()));
+            [s, t, w]
+        });
+        if !(s_max.is_finite() && ew_max.is_finite()) {
+            return Self::unbounded(n);
+        }
+        let mut mid: Coeffs = std::iter::repeat_n(0.0, tri_len(n)).collect();
+        blossom(&self.mid, n, &bary, &mut mid);
+        let rad = if n == 0 {
+            self.rad
+        } else {
+            let s_hat = iv::up(s_max + ew_max);
+            let p = s_hat.powi(n as i32 - 1);
+            let growth = 1.0 + gamma(3 * n);
+            inflate(p * s_hat * self.rad + n as f64 * p * (3.0 * U * s_hat + ew_max) * self.max_mid() * growth)
+        };
+        finish(n, mid, rad)
+    }
+
+    /// The L2-best approximation of degree `k` (Liu et al. 2016, §2.3.2,
+    /// Algorithm 2; projection matrices as [`TriBezier::reduce_l2`]) and a
+    /// rigorous `δ`. For `k ≥ n` the approximant is the ball's midpoint
+    /// polynomial (elevated to `k`).
+    ///
+    /// # The bound
+    /// With `a` the approximant (any floats), `ẽ = fl(Ẽ a)` its elevation to
+    /// degree `n` by the rounded elevation matrix (`|Ẽ − E| ≤ u E`
+    /// entrywise, `E ≥ 0` with unit row sums) in `K = tri_len(k)` fused steps:
+    /// ```text
+    /// |f_i − (E a)_i| ≤ r + |m_i − ẽ_i| + (γ_2K (1 + u) + u) max |a|
+    /// ```
+    /// and since the Bernstein basis is a non-negative partition of unity,
+    /// `|f − a| ≤ max_i |f_i − (E a)_i|` on the triangle.
+    pub fn reduce(&self, k: usize) -> Reduced {
+        let n = self.degree;
+        if k >= n {
+            let approx = if k == n {
+                self.mid.clone()
+            } else {
+                let e = elevation_matrix(n, k);
+                mat_vec(&e, &self.mid, tri_len(k))
+            };
+            // Elevation is a convex map: |E f − fl(Ẽ m)| ≤ r + (γ(1+u) + u)·max|m|.
+            let err = if k == n {
+                0.0
+            } else {
+                (gamma(2 * tri_len(n)) * (1.0 + U) + U) * self.max_mid()
+            };
+            let delta = if k == n && self.rad == 0.0 {
+                0.0
+            } else {
+                inflate(self.rad + err)
+            };
+            return Reduced { approx, delta };
+        }
+        let (red, elev) = reduction_matrices(n, k);
+        let approx = mat_vec(&red, &self.mid, tri_len(k));
+        let back = mat_vec(&elev, &approx, tri_len(n));
+        let mut dist = 0.0f64;
+        for (m, e) in self.mid.iter().zip(&back) {
+            dist = dist.max((m - e).abs());
+        }
+        let slack = (gamma(2 * tri_len(k)) * (1.0 + U) + U) * max_abs(&approx);
+        let delta = inflate(dist * (1.0 + 2.0 * U) + self.rad + slack);
+        Reduced {
+            approx,
+            delta: if delta.is_nan() { f64::INFINITY } else { delta },
+        }
+    }
+
+    /// `a·p + b·q` for float weights `a`, `b` (same degree; panics otherwise,
+    /// a caller bug). Each midpoint is `fl(a p_i + fl(b q_i))`, within
+    /// `2u(|a|P + |b|Q)` of the exact combination (`P`, `Q` the largest
+    /// midpoints).
+    pub fn combine(a: f64, p: &TriBall, b: f64, q: &TriBall) -> TriBall {
+        assert_eq!(p.degree, q.degree, "combine needs equal degrees");
+        let mid: Coeffs = p.mid.iter().zip(&q.mid).map(|(&x, &y)| a.mul_add(x, b * y)).collect();
+        let scale = a.abs() * p.max_mid() + b.abs() * q.max_mid();
+        let rad = inflate(a.abs() * p.rad + b.abs() * q.rad + 2.0 * U * scale);
+        finish(p.degree, mid, rad)
+    }
+
+    /// `ℓ·p + μ·q` for linear polynomials `ℓ`, `μ` given by their degree-1
+    /// BB coefficients (storage order: at `V3`, `V1`, `V2`), degree `n + 1`
+    /// (`p`, `q` of the same degree `n`; panics otherwise).
+    ///
+    /// # Formula
+    /// The product of a linear and a degree-`n` polynomial has
+    /// `(ℓ p)_γ = Σ_a (γ_a / (n + 1)) ℓ_a p_{γ − e_a}` (`a` over the three
+    /// vertices), so with `h_a = ℓ_a p + μ_a q`:
+    /// `(ℓ p + μ q)_γ = (γ_1 h_1[γ−e_1] + γ_2 h_2[γ−e_2] + γ_3 h_3[γ−e_3]) / (n + 1)`.
+    ///
+    /// # Radius
+    /// `max_a (|ℓ_a| r_p + |μ_a| r_q)` for the inputs' radii (the weights are
+    /// non-negative with unit sum), plus `2u H` for forming the `h_a` and
+    /// `5u H` for the three products, two sums and the division, where
+    /// `H = max_a (|ℓ_a| P + |μ_a| Q)(1 + 2u)`.
+    pub fn linear_combination(l: [f64; 3], p: &TriBall, m: [f64; 3], q: &TriBall) -> TriBall {
+        assert_eq!(p.degree, q.degree, "linear_combination needs equal degrees");
+        let n = p.degree;
+        let len = tri_len(n);
+        // h_a for a = V1, V2, V3 (BB storage order of ℓ: V3, V1, V2).
+        let weights = [(l[1], m[1]), (l[2], m[2]), (l[0], m[0])];
+        let mut h: SmallVec<[f64; 108]> = SmallVec::with_capacity(3 * len);
+        for &(la, ma) in &weights {
+            h.extend(p.mid.iter().zip(&q.mid).map(|(&x, &y)| la.mul_add(x, ma * y)));
+        }
+        let (h1, rest) = h.split_at(len);
+        let (h2, h3) = rest.split_at(len);
+        let n1 = n + 1;
+        let denom = n1 as f64;
+        let mut mid = Coeffs::with_capacity(tri_len(n1));
+        for j in 0..=n1 {
+            for i in 0..=n1 - j {
+                let k = n1 - i - j;
+                let mut acc = 0.0;
+                if i > 0 {
+                    acc += i as f64 * h1[tri_index(n, i - 1, j)];
+                }
+                if j > 0 {
+                    acc += j as f64 * h2[tri_index(n, i, j - 1)];
+                }
+                if k > 0 {
+                    acc += k as f64 * h3[tri_index(n, i, j)];
+                }
+                mid.push(acc / denom);
+            }
+        }
+        let (pm, qm) = (p.max_mid(), q.max_mid());
+        let mut carried = 0.0f64;
+        let mut size = 0.0f64;
+        for &(la, ma) in &weights {
+            carried = carried.max(la.abs() * p.rad + ma.abs() * q.rad);
+            size = size.max(la.abs() * pm + ma.abs() * qm);
+        }
+        let rad = inflate(carried + 7.0 * U * size * (1.0 + 2.0 * U));
+        finish(n1, mid, rad)
+    }
+
+    /// The value, gradient `(f_u, f_v)` and Hessian `(f_uu, f_uv, f_vv)` of the
+    /// midpoint polynomial at the barycentric point `b`, in `f64` (no bound:
+    /// for choosing multipliers and directions). As [`TriBezier::jet2`].
+    pub fn jet2(&self, b: &Bary<f64>) -> (f64, [f64; 2], [f64; 3]) {
+        let n = self.degree;
+        let mut net = self.mid.clone();
+        for m in (3..=n).rev() {
+            step(&mut net, m, b);
+        }
+        let q = |net: &[f64], i, j| net[tri_index(2, i, j)];
+        let hess = if n >= 2 {
+            let k = (n * (n - 1)) as f64;
+            [
+                k * (q(&net, 2, 0) - 2.0 * q(&net, 1, 0) + q(&net, 0, 0)),
+                k * (q(&net, 1, 1) - q(&net, 1, 0) - q(&net, 0, 1) + q(&net, 0, 0)),
+                k * (q(&net, 0, 2) - 2.0 * q(&net, 0, 1) + q(&net, 0, 0)),
+            ]
+        } else {
+            [0.0; 3]
+        };
+        if n >= 2 {
+            step(&mut net, 2, b);
+        }
+        let grad = if n >= 1 {
+            let k = n as f64;
+            let g = [k * (net[1] - net[0]), k * (net[2] - net[0])];
+            step(&mut net, 1, b);
+            g
+        } else {
+            [0.0; 2]
+        };
+        (net[0], grad, hess)
+    }
+}
+
+/// A triangular BB polynomial in double-double: coefficient `c = hi + lo`
+/// (`|lo| ≤ u|hi|`) up to a radius `r` — the root polynomial from which
+/// [`TriBallDD::subdivide`] computes tri-box polynomials whose radius is a few
+/// units in the last place of the *tri-box's own* coefficients.
+///
+/// # Why
+/// A float subdivision ([`TriBall::subdivide`]) errs by a few ulps of the
+/// root polynomial's largest coefficient, for every tri-box: on a tiny tri-box
+/// next to a root, whose coefficients are tiny, that rounding dominates and
+/// stops clipping and check-sign (the "rounding floor", amplified by `1/θ`
+/// where the curves cross at a small angle `θ`). Computing the same blossoms
+/// with compensated arithmetic (error-free products and sums, the errors
+/// carried in the low parts) moves that floor to `~100 n u² M₀`, about
+/// `1e-30` of the root's scale, and rounding the result to `f64` costs one
+/// ulp of each result coefficient — at about ten times the float cost, so the
+/// solver uses it only where the float ball is noisy.
+#[derive(Clone, Debug)]
+pub struct TriBallDD {
+    degree: usize,
+    hi: Coeffs,
+    lo: Coeffs,
+    rad: f64,
+}
+
+/// `a + b = s + e` exactly (Knuth's TwoSum).
+#[inline(always)]
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    (s, (a - (s - bb)) + (b - bb))
+}
+
+/// `a·b = p + e` exactly (one FMA), away from underflow.
+#[inline(always)]
+fn two_prod(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    (p, a.mul_add(b, -p))
+}
+
+/// A vertex in double-double barycentrics: `s`, `t` exact, `1 − s − t =
+/// wh + wl` up to `|ew| ≤ u|wl|`.
+#[derive(Clone, Copy)]
+struct DdPoint {
+    s: f64,
+    t: f64,
+    wh: f64,
+    wl: f64,
+}
+
+impl DdPoint {
+    fn new([s, t]: [f64; 2]) -> Self {
+        // 1 − s = a + e1, a − t = b + e2 (both exact), e1 + e2 = c + e3.
+        let (a, e1) = two_sum(1.0, -s);
+        let (b, e2) = two_sum(a, -t);
+        let (wh, wl) = two_sum(b, e1 + e2);
+        Self { s, t, wh, wl }
+    }
+}
+
+impl TriBallDD {
+    /// The float ball `b` as a double-double one (low parts 0).
+    pub fn from_ball(b: &TriBall) -> Self {
+        Self {
+            degree: b.degree,
+            hi: b.mid.clone(),
+            lo: std::iter::repeat_n(0.0, b.mid.len()).collect(),
+            rad: b.rad,
+        }
+    }
+
+    /// Exact coefficients (storage order, degree `n`) to double-double: `hi`
+    /// the nearest float, `lo` an end of the tightest interval around
+    /// `c − hi`, the radius that interval's width (so about `u²|c|`).
+    pub fn from_rationals(n: usize, coeffs: &[BigRational]) -> Self {
+        let (mut hi, mut lo) = (Coeffs::new(), Coeffs::new());
+        let mut rad = 0.0f64;
+        for c in coeffs {
+            let h = crate::scalar::rational_to_f64(c);
+            let rest = crate::scalar::rational_to_interval(&(c - BigRational::from_float(h).unwrap_or_default()));
+            hi.push(h);
+            lo.push(rest.inf());
+            rad = rad.max(iv::up(rest.sup() - rest.inf()));
+        }
+        if !(rad.is_finite() && hi.iter().all(|x| x.is_finite())) {
+            return Self::from_ball(&TriBall::unbounded(n));
+        }
+        Self { degree: n, hi, lo, rad }
+    }
+
+    /// The same polynomial scaled by `2^e` (exact unless a part underflows,
+    /// which the radius then takes).
+    pub fn scaled_pow2(&self, e: i32) -> Self {
+        let (h, l) = (
+            TriBall::new_raw(self.degree, self.hi.clone(), self.rad),
+            TriBall::new_raw(self.degree, self.lo.clone(), 0.0),
+        );
+        let (h, l) = (h.scaled_pow2(e), l.scaled_pow2(e));
+        Self {
+            degree: self.degree,
+            hi: h.mid,
+            lo: l.mid,
+            rad: iv::up(h.rad + l.rad),
+        }
+    }
+
+    /// The polynomial on the sub-triangle with vertices `verts`, as
+    /// [`TriBall::subdivide`], computed in compensated arithmetic and rounded
+    /// to a float ball.
+    ///
+    /// # One step
+    /// With `A = Ah + Al` etc. (`|Al| ≤ u|Ah|`), TwoProd gives
+    /// `s·Ah = s1 + e1`, `t·Bh = s2 + e2`, `wh·Ch = s3 + e3` and TwoSum
+    /// `s1 + s2 + s3 = h + r1 + r2` exactly; then
+    /// ```text
+    /// y = s A + t B + w C = h + L + (wl Cl + ew C),
+    /// L = r1 + r2 + e1 + e2 + e3 + s Al + t Bl + wh Cl + wl Ch
+    /// ```
+    /// and `L` is summed in `f64` (ten roundings). Every term of `L` is at
+    /// most `u·S·M` (`S = |s| + |t| + |wh|`, `M` the input magnitude) or
+    /// `|wl|M`, four `u S M` in all, so the step errs by at most
+    /// `γ₁₀(4u S M + |wl| M) + 2u|wl| M ≤ (44u² S + 13u |wl|) M`, and
+    /// `(h, L)` is renormalized exactly by TwoSum. Over the `n` steps of a
+    /// coefficient, as for the float ball:
+    /// ```text
+    /// r' = max |yl| + Ŝⁿ r + n Ŝⁿ⁻¹ (44u² Ŝ + 13u w_l) M₀ (1 + u)³ⁿ
+    /// ```
+    /// where `yl` are the low parts of the results (their exact distance to
+    /// the float midpoints `yh`) and `w_l = max |wl|`.
+    pub fn subdivide(&self, verts: &[[f64; 2]; 3]) -> TriBall {
+        let n = self.degree;
+        let pts = verts.map(DdPoint::new);
+        let mut s_max = 0.0f64;
+        let mut wl_max = 0.0f64;
+        for p in &pts {
+            s_max = s_max.max(p.s.abs() + p.t.abs() + p.wh.abs() + p.wl.abs());
+            wl_max = wl_max.max(p.wl.abs());
+        }
+        if !s_max.is_finite() {
+            return TriBall::unbounded(n);
+        }
+        let len = tri_len(n);
+        let (mut out_hi, mut out_lo): (Coeffs, Coeffs) = (
+            std::iter::repeat_n(0.0, len).collect(),
+            std::iter::repeat_n(0.0, len).collect(),
+        );
+        blossom_dd(&self.hi, &self.lo, n, &pts, &mut out_hi, &mut out_lo);
+        let m0 = max_abs(&self.hi) * (1.0 + U);
+        let rad = if n == 0 {
+            self.rad + max_abs(&out_lo)
+        } else {
+            let s_hat = iv::up(s_max);
+            let p = s_hat.powi(n as i32 - 1);
+            let growth = 1.0 + gamma(3 * n);
+            let floor = n as f64 * p * (44.0 * U * U * s_hat + 13.0 * U * wl_max) * m0 * growth;
+            inflate(max_abs(&out_lo) + p * s_hat * self.rad + floor)
+        };
+        finish(n, out_hi, rad)
+    }
+}
+
+/// One compensated de Casteljau step in place on the net `(hi, lo)` of
+/// degree `m` at `p` (see [`TriBallDD::subdivide`]).
+#[inline]
+fn step_dd(hi: &mut [f64], lo: &mut [f64], m: usize, p: &DdPoint) {
+    let mut out = 0;
+    let mut row = 0;
+    for j in 0..m {
+        let next = row + m + 1 - j;
+        for i in 0..m - j {
+            let (a, b, c) = (row + i + 1, next + i, row + i);
+            let (s1, e1) = two_prod(p.s, hi[a]);
+            let (s2, e2) = two_prod(p.t, hi[b]);
+            let (s3, e3) = two_prod(p.wh, hi[c]);
+            let (h1, r1) = two_sum(s1, s2);
+            let (h, r2) = two_sum(h1, s3);
+            let l =
+                p.s.mul_add(lo[a], p.t.mul_add(lo[b], p.wh.mul_add(lo[c], p.wl * hi[c])));
+            let l = l + ((r1 + r2) + (e1 + e2 + e3));
+            let (yh, yl) = two_sum(h, l);
+            hi[out] = yh;
+            lo[out] = yl;
+            out += 1;
+        }
+        row = next;
+    }
+}
+
+/// [`blossom`] in compensated arithmetic.
+fn blossom_dd(c_hi: &[f64], c_lo: &[f64], n: usize, p: &[DdPoint; 3], out_hi: &mut [f64], out_lo: &mut [f64]) {
+    let len = tri_len(n);
+    let mut scratch: SmallVec<[f64; 216]> = std::iter::repeat_n(0.0, 6 * len).collect();
+    let (ah, rest) = scratch.split_at_mut(len);
+    let (al, rest) = rest.split_at_mut(len);
+    let (bh, rest) = rest.split_at_mut(len);
+    let (bl, rest) = rest.split_at_mut(len);
+    let (ch, cl) = rest.split_at_mut(len);
+    ah.copy_from_slice(c_hi);
+    al.copy_from_slice(c_lo);
+    for r in 0..=n {
+        if r > 0 {
+            step_dd(ah, al, n - r + 1, &p[0]);
+        }
+        let la = tri_len(n - r);
+        bh[..la].copy_from_slice(&ah[..la]);
+        bl[..la].copy_from_slice(&al[..la]);
+        for s in 0..=n - r {
+            if s > 0 {
+                step_dd(bh, bl, n - r - s + 1, &p[1]);
+            }
+            let d = n - r - s;
+            let idx = tri_index(n, r, s);
+            if d == 0 {
+                out_hi[idx] = bh[0];
+                out_lo[idx] = bl[0];
+            } else {
+                let lb = tri_len(d);
+                ch[..lb].copy_from_slice(&bh[..lb]);
+                cl[..lb].copy_from_slice(&bl[..lb]);
+                for m in (1..=d).rev() {
+                    step_dd(ch, cl, m, &p[2]);
+                }
+                out_hi[idx] = ch[0];
+                out_lo[idx] = cl[0];
+            }
+        }
+    }
+}
+
+/// A ball from computed midpoints and radius: unbounded if anything overflowed.
+fn finish(degree: usize, mid: Coeffs, rad: f64) -> TriBall {
+    if rad.is_finite() && mid.iter().all(|m| m.is_finite()) {
+        TriBall { degree, mid, rad }
+    } else {
+        TriBall::unbounded(degree)
+    }
+}
+
+fn max_abs(x: &[f64]) -> f64 {
+    x.iter().fold(0.0f64, |acc, v| acc.max(v.abs()))
+}
+
+/// `2^e` for `|e| ≤ 1000`, exactly.
+fn pow2(e: i32) -> f64 {
+    let e = e.clamp(-1000, 1000);
+    if e >= -1022 {
+        f64::from_bits(((1023 + e) as u64) << 52)
+    } else {
+        f64::from_bits(1u64 << (e + 1074))
+    }
+}
+
+/// One de Casteljau step in place: the float net of degree `m` becomes the net
+/// of degree `m − 1` at `p` (`c' = p_u c_{i+1,j} + p_v c_{i,j+1} + p_w c_ij`,
+/// evaluated as two FMAs over a product). Writing in storage order never
+/// overwrites an entry a later output reads (see `triangle::step_with`).
+#[inline]
+fn step(net: &mut [f64], m: usize, p: &[f64; 3]) {
+    let [pu, pv, pw] = *p;
+    let mut out = 0;
+    let mut row = 0;
+    for j in 0..m {
+        let next = row + m + 1 - j;
+        for i in 0..m - j {
+            let c = pv.mul_add(net[next + i], pw * net[row + i]);
+            net[out] = pu.mul_add(net[row + i + 1], c);
+            out += 1;
+        }
+        row = next;
+    }
+}
+
+/// The blossoms `out[ij] = f[P1^i, P2^j, P3^(n−i−j)]` of the float net `c`
+/// (as `triangle::blossom_net`: `i` steps at `P1`, then `j` at `P2`, then the
+/// rest at `P3`), with scratch on the stack for small degrees.
+fn blossom(c: &[f64], n: usize, p: &[[f64; 3]; 3], out: &mut [f64]) {
+    let len = tri_len(n);
+    let mut scratch: SmallVec<[f64; 108]> = std::iter::repeat_n(0.0, 3 * len).collect();
+    let (a, rest) = scratch.split_at_mut(len);
+    let (b, cc) = rest.split_at_mut(len);
+    a.copy_from_slice(c);
+    for r in 0..=n {
+        if r > 0 {
+            step(a, n - r + 1, &p[0]);
+        }
+        let la = tri_len(n - r);
+        b[..la].copy_from_slice(&a[..la]);
+        for s in 0..=n - r {
+            if s > 0 {
+                step(b, n - r - s + 1, &p[1]);
+            }
+            let d = n - r - s;
+            out[tri_index(n, r, s)] = match d {
+                0 => b[0],
+                1 => p[2][0].mul_add(b[1], p[2][1].mul_add(b[2], p[2][2] * b[0])),
+                _ => {
+                    let lb = tri_len(d);
+                    cc[..lb].copy_from_slice(&b[..lb]);
+                    for m in (1..=d).rev() {
+                        step(cc, m, &p[2]);
+                    }
+                    cc[0]
+                }
+            };
+        }
+    }
+}
+
+/// Row-major `rows × v.len()` matrix times `v`, each row a chain of FMAs.
+fn mat_vec(mat: &[f64], v: &[f64], rows: usize) -> Coeffs {
+    let cols = v.len();
+    mat.chunks_exact(cols.max(1))
+        .take(rows)
+        .map(|row| row.iter().zip(v).fold(0.0, |acc: f64, (a, x)| a.mul_add(*x, acc)))
+        .collect()
+}
+
+/// The rounded L2 projection (`n → k`) and elevation (`k → n`) matrices, from
+/// the crate's cache of exact matrices converted to `f64` (nearest).
+fn reduction_matrices(n: usize, k: usize) -> (Arc<[f64]>, Arc<[f64]>) {
+    (
+        f64::cached_matrix(MatrixKey::TriReduce(n, k), || l2::tri_reduction_exact(n, k)),
+        elevation_matrix(k, n),
+    )
+}
+
+fn elevation_matrix(from: usize, to: usize) -> Arc<[f64]> {
+    f64::cached_matrix(MatrixKey::TriElevate(from, to), || l2::tri_elevation_exact(from, to))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_traits::Signed;
+
+    fn q(x: f64) -> BigRational {
+        BigRational::from_float(x).unwrap()
+    }
+
+    /// Deterministic pseudo-random floats in `[-1, 1)`.
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self) -> f64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        }
+    }
+
+    /// Every exact coefficient of `exact` lies in the ball.
+    fn contains(ball: &TriBall, exact: &[BigRational]) -> bool {
+        exact.iter().enumerate().all(|(i, e)| {
+            let (lo, hi) = ball.bounds(i);
+            q(lo) <= *e && *e <= q(hi)
+        })
+    }
+
+    fn exact_of(b: &TriBall) -> TriBezier<BigRational> {
+        TriBezier::new(b.degree(), b.mid().iter().map(|&m| q(m)).collect()).unwrap()
+    }
+
+    /// Subdivision encloses the exact blossoms of the midpoint polynomial
+    /// (vertices inside, on the edges of and slightly outside the triangle;
+    /// the `w` coordinate is not a float), and the radius is a few ulps.
+    #[test]
+    fn subdivision_encloses_exact_blossoms() {
+        let mut rng = Rng(0x1234_5678_9abc_def1);
+        for case in 0..300 {
+            let n = 1 + case % 7;
+            let mid: Vec<f64> = (0..tri_len(n))
+                .map(|_| rng.next() * [1.0, 1e-3, 7.0][case % 3])
+                .collect();
+            let ball = TriBall::new(n, &mid, 0.0).unwrap();
+            let mut vert = || {
+                let s = 0.5 + 0.55 * rng.next();
+                let t = (0.5 + 0.55 * rng.next()) * (1.0 - s).max(0.0);
+                [s, t]
+            };
+            let verts = [vert(), vert(), vert()];
+            let sub = ball.subdivide(&verts);
+            let exact = exact_of(&ball);
+            let bary = verts.map(|[s, t]| {
+                let (s, t) = (q(s), q(t));
+                let w = q(1.0) - &s - &t;
+                [s, t, w]
+            });
+            let want = exact.subdivide(&bary);
+            assert!(contains(&sub, want.coeffs()), "case {case}");
+            assert!(
+                sub.rad() < 100.0 * n as f64 * U * ball.max_mid() * 4.0,
+                "case {case}: {}",
+                sub.rad()
+            );
+        }
+    }
+
+    /// Compensated subdivision encloses the exact blossoms of the exact
+    /// input, with a radius of a few ulps of the *result's* coefficients
+    /// (plus ~1e-30 of the input's), on tiny tri-boxes next to a zero of the
+    /// polynomial, where the float ball's radius is ulps of the input's.
+    #[test]
+    fn compensated_subdivision_is_tight_and_rigorous() {
+        let mut rng = Rng(0x5eed_0000_1111_2222);
+        let third = BigRational::new(1.into(), 3.into());
+        for case in 0..200 {
+            let n = 1 + case % 6;
+            // Exact coefficients that are not floats, around a zero at the centre.
+            let exact: Vec<BigRational> = (0..tri_len(n)).map(|_| q(rng.next()) * &third).collect();
+            let p0 = TriBezier::new(n, exact).unwrap();
+            let centre = [0.3 + 0.1 * rng.next(), 0.2 + 0.1 * rng.next()];
+            let bc = [q(centre[0]), q(centre[1]), q(1.0) - q(centre[0]) - q(centre[1])];
+            let value = p0.eval_bary(&bc);
+            let p = TriBezier::new(n, p0.coeffs().iter().map(|c| c - &value).collect()).unwrap();
+            let dd = TriBallDD::from_rationals(n, p.coeffs());
+            let h = [1e-3, 1e-9, 1e-14][case % 3];
+            let verts = [
+                [centre[0] + h, centre[1]],
+                [centre[0], centre[1] + h],
+                [centre[0] - h, centre[1] - 0.5 * h],
+            ];
+            let sub = dd.subdivide(&verts);
+            let bary = verts.map(|[s, t]| [q(s), q(t), q(1.0) - q(s) - q(t)]);
+            let want = p.subdivide(&bary);
+            assert!(contains(&sub, want.coeffs()), "case {case}");
+            // Tight: a few ulps of the result plus ~u² of the input.
+            let local = sub.max_mid();
+            assert!(
+                sub.rad() <= 4.0 * U * local + 1e-29,
+                "case {case}: rad {:e}, local {local:e}",
+                sub.rad()
+            );
+            let float = TriBall::enclose_rationals(n, p.coeffs()).subdivide(&verts);
+            assert!(contains(&float, want.coeffs()), "case {case}");
+        }
+    }
+
+    /// The input radius is carried through subdivision.
+    #[test]
+    fn subdivision_carries_the_radius() {
+        let ball = TriBall::new(2, &[0.5, -0.25, 1.0, 0.125, 0.0, -1.0], 1e-6).unwrap();
+        let sub = ball.subdivide(&[[0.5, 0.25], [0.25, 0.5], [0.25, 0.25]]);
+        assert!(sub.rad() >= 1e-6 && sub.rad() < 1e-6 + 1e-14);
+        // The ball's extreme members subdivide into the result.
+        for sign in [-1.0, 1.0] {
+            let shifted: Vec<BigRational> = ball.mid().iter().map(|&m| q(m) + q(sign * 1e-6)).collect();
+            let p = TriBezier::new(2, shifted).unwrap();
+            let bary = [[0.5, 0.25], [0.25, 0.5], [0.25, 0.25]].map(|[s, t]| {
+                let (s, t) = (q(s), q(t));
+                let w = q(1.0) - &s - &t;
+                [s, t, w]
+            });
+            assert!(contains(&sub, p.subdivide(&bary).coeffs()));
+        }
+    }
+
+    /// `δ` bounds the exact distance between each coefficient of the ball's
+    /// extreme members and the approximant elevated exactly.
+    #[test]
+    fn reduction_bound_is_rigorous() {
+        let mut rng = Rng(0xdead_beef_1234_5678);
+        for case in 0..200 {
+            let n = 1 + case % 6;
+            let k = 1 + case % 2;
+            let mid: Vec<f64> = (0..tri_len(n)).map(|_| rng.next()).collect();
+            let rad = if case % 3 == 0 { 0.0 } else { 1e-9 * (rng.next() + 1.0) };
+            let ball = TriBall::new(n, &mid, rad).unwrap();
+            let red = ball.reduce(k);
+            assert_eq!(red.approx.len(), tri_len(k));
+            let a = TriBezier::new(k, red.approx.iter().map(|&x| q(x)).collect()).unwrap();
+            let top = n.max(k);
+            let a_up = a.elevate(top).unwrap();
+            let f_up = exact_of(&ball).elevate(top).unwrap();
+            let worst = f_up
+                .coeffs()
+                .iter()
+                .zip(a_up.coeffs())
+                .map(|(f, e)| Signed::abs(&(f - e)) + q(rad))
+                .fold(q(0.0), |m, x| if x > m { x } else { m });
+            assert!(worst <= q(red.delta), "case {case}: {} > {}", worst, red.delta);
+            if n > k && rad == 0.0 {
+                // Not much more than the true distance.
+                let w: f64 = num_traits::ToPrimitive::to_f64(&worst).unwrap();
+                assert!(red.delta <= w * (1.0 + 1e-9) + 1e-13, "case {case}");
+            }
+        }
+    }
+
+    /// `linear_combination` and `combine` enclose the exact products.
+    #[test]
+    fn combinations_enclose_exact_results() {
+        let mut rng = Rng(0x0bad_cafe_f00d_0001);
+        for case in 0..200 {
+            let n = 1 + case % 5;
+            let p = TriBall::new(n, &(0..tri_len(n)).map(|_| rng.next()).collect::<Vec<_>>(), 1e-12).unwrap();
+            let qb = TriBall::new(n, &(0..tri_len(n)).map(|_| rng.next() * 3.0).collect::<Vec<_>>(), 0.0).unwrap();
+            let l = [rng.next() * 5.0, rng.next(), rng.next() * 0.1];
+            let m = [1.0 / 3.0, rng.next(), 1.0];
+            let out = TriBall::linear_combination(l, &p, m, &qb);
+            let lin = |c: [f64; 3]| TriBezier::new(1, c.iter().map(|&x| q(x)).collect()).unwrap();
+            for sign in [-1.0, 1.0] {
+                let pe = TriBezier::new(n, p.mid().iter().map(|&x| q(x) + q(sign * 1e-12)).collect()).unwrap();
+                let want = lin(l).mul(&pe).add(&lin(m).mul(&exact_of(&qb)));
+                assert!(contains(&out, want.coeffs()), "case {case}");
+            }
+            let (a, b) = (rng.next(), rng.next() * 1e3);
+            let c = TriBall::combine(a, &p, b, &qb);
+            let want: Vec<BigRational> = exact_of(&p)
+                .coeffs()
+                .iter()
+                .zip(exact_of(&qb).coeffs())
+                .map(|(x, y)| q(a) * x + q(b) * y)
+                .collect();
+            // Members of p reach 1e-12 away from its midpoints.
+            assert!(c.rad() >= a.abs() * 1e-12);
+            assert!(contains(&c, &want), "case {case}");
+        }
+    }
+
+    #[test]
+    fn signs_and_bounds() {
+        let b = TriBall::new(1, &[1.0, 2.0, 0.5], 0.25).unwrap();
+        assert_eq!(b.strict_sign(), Some(Sign::Positive));
+        let b = TriBall::new(1, &[1.0, 2.0, 0.25], 0.25).unwrap();
+        assert_eq!(b.strict_sign(), None);
+        assert!(!b.sign_lost());
+        let b = TriBall::new(1, &[1e-17, -1e-17, 0.0], 1e-16).unwrap();
+        assert!(b.sign_lost());
+        let (lo, hi) = TriBall::new(0, &[0.1], 0.1).unwrap().bounds(0);
+        assert!(lo <= 0.0 && hi >= 0.2);
+    }
+
+    #[test]
+    fn enclosures_from_intervals_and_rationals() {
+        let third = BigRational::new(1.into(), 3.into());
+        let b = TriBall::enclose_rationals(0, std::slice::from_ref(&third));
+        assert!(b.rad() > 0.0 && contains(&b, &[third]));
+        let b = TriBall::enclose_rationals(0, &[q(0.5)]);
+        assert_eq!(b.rad(), 0.0);
+        let i = TriBezier::new(0, vec![crate::scalar::interval(0.1, 0.30000000000000004)]).unwrap();
+        let b = TriBall::enclose(&i).unwrap();
+        assert!(contains(&b, &[q(0.1)]) && contains(&b, &[q(0.30000000000000004)]));
+    }
+
+    #[test]
+    fn normalization_is_exact_and_keeps_signs() {
+        let b = TriBall::new(1, &[3e200, -1e200, 5e-100], 1e190).unwrap();
+        let e = TriBall::normalizing_exponent(&[&b]);
+        let s = b.scaled_pow2(e);
+        assert!(s.mag() >= 1.0 && s.mag() < 2.0 + 1e-15);
+        assert_eq!(s.scaled_pow2(-e).mid(), b.mid());
+        let tiny = TriBall::new(0, &[f64::from_bits(3)], 0.0).unwrap().scaled_pow2(-1);
+        assert!(tiny.rad() > 0.0, "the underflow went into the radius");
+        assert!(q(tiny.mid()[0]) - q(tiny.rad()) <= q(f64::from_bits(3)) / BigRational::from_integer(2.into()));
+    }
+
+    #[test]
+    fn jets_match_the_generic_kernel() {
+        let p = TriBezier::from_fn(4, |i, j, k| (i as f64 - 0.3 * j as f64 + 0.1 * (k * k) as f64).sin());
+        let b = TriBall::from_points(&p);
+        let c = [0.2, 0.3, 0.5];
+        let (v0, g0, h0) = p.jet2(&c);
+        let (v1, g1, h1) = b.jet2(&c);
+        assert!((v0 - v1).abs() < 1e-14);
+        for i in 0..2 {
+            assert!((g0[i] - g1[i]).abs() < 1e-12);
+        }
+        for i in 0..3 {
+            assert!((h0[i] - h1[i]).abs() < 1e-11);
+        }
+    }
+}
