@@ -327,7 +327,13 @@ fn clip_in<G: Geo>(fats: &[Fat<G>]) -> ClipBounds {
             // The two level curves `Q = ±δ` differ in the constant term only.
             let levels = [q.shifted(*d).c[0], q.shifted(-*d).c[0]];
             for line in lines.iter().chain(&tangents) {
-                if line_conic(&line.cut, q, levels, &mut push) {
+                // Only the piece of the line inside every other strip can hold
+                // a feasible candidate.
+                let range = fats.iter().enumerate().fold([0.0, 1.0], |r, (idx, fat)| match fat {
+                    Fat::Line(l, d) if line.src != 3 + idx => inside_strip(&line.cut, l, *d, r),
+                    _ => r,
+                });
+                if line_conic(&line.cut, q, levels, range, &mut push) {
                     break 'pairs;
                 }
             }
@@ -407,11 +413,58 @@ fn cut_of<G: Geo>(l: &Linear<G>) -> Cut<G> {
     }
 }
 
+/// `range` (a sub-interval of `[0, 1]` for the line's parameter `x`, see
+/// [`cut_of`]) narrowed to an outer bound of the parameters whose points lie
+/// in the strip `|l| ≤ δ`; `[1, 0]` (empty) when none do. Along the line
+/// `l = λ0 + λ1 x`, so the strip is `x ∈ [(−δ − λ0)/λ1, (δ − λ0)/λ1]` when
+/// `λ1 ≠ 0` is proven, and no narrowing is attempted otherwise. The float
+/// kernel widens the bounds by a relative `1e-9` (its candidates are not
+/// enclosures).
+fn inside_strip<G: Geo>(cut: &Cut<G>, l: &Linear<G>, delta: f64, range: [f64; 2]) -> [f64; 2] {
+    let Cut::Param { by_s, m, k } = *cut else {
+        return range;
+    };
+    let [l0, l1, l2] = l.c;
+    // (s, t) = (x, m x + k) or (m x + k, x).
+    let (lam0, lam1) = if by_s {
+        (l0 + l2 * k, l1 + l2 * m)
+    } else {
+        (l0 + l1 * k, l2 + l1 * m)
+    };
+    if !lam1.nonzero() {
+        return range;
+    }
+    let d = G::pt(delta);
+    let (a, b) = ((-d - lam0) / lam1, (d - lam0) / lam1);
+    let (mut lo, mut hi) = (a.lower().min(b.lower()), a.upper().max(b.upper()));
+    if !G::RIGOROUS {
+        let slack = 1e-9 * (1.0 + lo.abs() + hi.abs());
+        (lo, hi) = (lo - slack, hi + slack);
+    }
+    if lo.is_nan() || hi.is_nan() {
+        return range;
+    }
+    [range[0].max(lo), range[1].min(hi)]
+}
+
 /// Enclosures of the intersections of a line (as [`cut_of`] parametrizes it)
 /// with the level curves `Q − Q(0, 0) + c0 = 0` for both `c0` in `levels`,
-/// restricted to `[0, 1]²`, handed to `push`; `true` as soon as `push`
-/// returns `true`. What does not depend on the level is computed once.
-fn line_conic<G: Geo>(cut: &Cut<G>, q: &Quadratic<G>, levels: [G; 2], push: &mut impl FnMut([G; 2]) -> bool) -> bool {
+/// restricted to `[0, 1]²` and to the parameters in `range` (outside it no
+/// point is feasible: see [`inside_strip`]), handed to `push`; `true` as soon
+/// as `push` returns `true`. What does not depend on the level is computed
+/// once, and a level whose quadratic provably has no zero on `range` is
+/// skipped without solving.
+fn line_conic<G: Geo>(
+    cut: &Cut<G>,
+    q: &Quadratic<G>,
+    levels: [G; 2],
+    range: [f64; 2],
+    push: &mut impl FnMut([G; 2]) -> bool,
+) -> bool {
+    // NaN bounds fail both comparisons and keep the whole segment.
+    if range[0] > range[1] {
+        return false;
+    }
     let (by_s, m, k) = match *cut {
         Cut::Nothing => return false,
         Cut::Whole => {
@@ -448,6 +501,7 @@ fn line_conic<G: Geo>(cut: &Cut<G>, q: &Quadratic<G>, levels: [G; 2], push: &mut
         beta_sq: beta * beta,
         four_alpha: G::pt(4.0) * alpha,
     };
+    let segment = G::pt(range[0]).hull(G::pt(range[1]));
     for c0 in levels {
         eq.gamma = c0 + gamma1 + gamma2;
         if [alpha, beta, eq.gamma].iter().all(|c| c.sign_class() == Sign::Zero) {
@@ -455,8 +509,16 @@ fn line_conic<G: Geo>(cut: &Cut<G>, q: &Quadratic<G>, levels: [G; 2], push: &mut
             // points of that boundary piece, found through the other pairs.
             continue;
         }
+        if G::RIGOROUS && [0.0, 1.0] != range {
+            // The quadratic's range over the segment (x ≥ 0, so α x·x is
+            // an enclosure of α x²) misses 0: no crossing there.
+            let value = (alpha * segment + beta) * segment + eq.gamma;
+            if value.lower() > 0.0 || value.upper() < 0.0 {
+                continue;
+            }
+        }
         let mut settled = false;
-        roots_in_unit(&eq, &mut |x| {
+        roots_in(&eq, range, &mut |x| {
             if let Some(y) = (m * x + k).clamp_to(0.0, 1.0) {
                 settled = push(if by_s { [x, y] } else { [y, x] });
             }
@@ -500,6 +562,11 @@ pub fn quadratic_roots_in_unit<G: Geo>(alpha: G, beta: G, gamma: G) -> Vec<G> {
 /// [`quadratic_roots_in_unit`], each root handed to `keep`; stops once `keep`
 /// returns `true`.
 fn roots_in_unit<G: Geo>(eq: &Quad<G>, keep: &mut impl FnMut(G) -> bool) {
+    roots_in(eq, [0.0, 1.0], keep)
+}
+
+/// The roots in `range ⊂ [0, 1]` of [`roots_in_unit`] (clamped to it).
+fn roots_in<G: Geo>(eq: &Quad<G>, range: [f64; 2], keep: &mut impl FnMut(G) -> bool) {
     let Quad {
         alpha,
         beta,
@@ -518,7 +585,7 @@ fn roots_in_unit<G: Geo>(eq: &Quad<G>, keep: &mut impl FnMut(G) -> bool) {
     let Some(sq) = disc.sqrt_nonneg() else {
         return;
     };
-    let mut keep_in_unit = |x: G| x.clamp_to(0.0, 1.0).is_some_and(&mut *keep);
+    let mut keep_in_unit = |x: G| x.clamp_to(range[0], range[1]).is_some_and(&mut *keep);
     if beta.nonzero() {
         // q = −(β + sign(β)·√D)/2 has |q| ≥ |β|/2 > 0: roots q/α and γ/q.
         let q = (if beta.lower() > 0.0 { -(beta + sq) } else { sq - beta }) / G::pt(2.0);
@@ -536,7 +603,7 @@ fn roots_in_unit<G: Geo>(eq: &Quad<G>, keep: &mut impl FnMut(G) -> bool) {
             keep_in_unit((-beta - sq) / two_a);
         }
     } else if G::RIGOROUS {
-        keep(G::pt(0.0).hull(G::pt(1.0)));
+        keep(G::pt(range[0]).hull(G::pt(range[1])));
     } else if gamma.sign_class() == Sign::Zero {
         keep(G::pt(0.0));
     }
