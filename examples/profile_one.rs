@@ -46,8 +46,8 @@ fn main() {
             swap_roles: true,
         };
         let (fb, gb) = (TriBall::enclose(&f).unwrap(), TriBall::enclose(&g).unwrap());
-        let ri = driver::run::<GeoIv>(&fb, &gb, None, &limits, &mut |_| Probe::Undecided);
-        let rf = driver::run::<f64>(&fb, &gb, None, &limits, &mut |_| Probe::Undecided);
+        let ri = driver::run::<GeoIv>(&fb, &gb, driver::Exact::None, &limits, &mut |_| Probe::Undecided);
+        let rf = driver::run::<f64>(&fb, &gb, driver::Exact::None, &limits, &mut |_| Probe::Undecided);
         println!(
             "interval: {:?} leaves {}\nf64:      {:?} leaves {}",
             ri.counters,

@@ -459,7 +459,13 @@ fn separation_in_tree(ex: &Example, m: Method, variant: Variant) -> Res<Option<(
         split: o.split,
         swap_roles: o.swap_roles,
     };
-    let run = driver::run::<GeoIv>(&ball(&f), &ball(&g), Some(&exact), &limits, &mut |_| Probe::Undecided);
+    let run = driver::run::<GeoIv>(
+        &ball(&f),
+        &ball(&g),
+        driver::Exact::Rational(&exact),
+        &limits,
+        &mut |_| Probe::Undecided,
+    );
     let sol = repro::run(ex, m, 1e-14, variant)?;
     let near = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
     let roots: Vec<[f64; 2]> = sol.roots.iter().map(|r| [r.u, r.v]).collect();

@@ -20,8 +20,10 @@
 use super::l2;
 use crate::error::{Error, Result};
 use crate::scalar::{
-    cached_endpoints, endpoints_of, from_endpoints, store_endpoints, Arith, Endpoints, MatrixKey, Scalar,
+    cached_endpoints, endpoint_of, endpoints_of, from_endpoint, from_endpoints, store_endpoints, Arith, Endpoints,
+    MatrixKey, Scalar,
 };
+use smallvec::SmallVec;
 
 /// A triangular Bernstein–Bézier polynomial of total degree `n`.
 #[derive(Clone, Debug, PartialEq)]
@@ -125,13 +127,18 @@ impl<S: Scalar> TriBezier<S> {
     /// triangle, so the f64 kernel is backward stable there; the interval
     /// kernel encloses the exact value for every member of `b`.
     pub fn eval_bary(&self, b: &Bary<S>) -> S {
-        if let Some((mut net, p)) = endpoints_of(&self.coeffs).zip(bary_endpoints(b)) {
-            for m in (1..=self.degree).rev() {
-                step(&mut net, m, &p);
+        // Scratch on the stack for the usual degrees (this is the hot loop of
+        // Krawczyk's operator).
+        if let Some(p) = bary_endpoints(b) {
+            let net: Option<SmallVec<[Endpoints; 36]>> = self.coeffs.iter().map(endpoint_of).collect();
+            if let Some(mut net) = net {
+                for m in (1..=self.degree).rev() {
+                    step(&mut net, m, &p);
+                }
+                return from_endpoint(net[0]);
             }
-            return from_endpoints(&net[..1]).swap_remove(0);
         }
-        let mut net = self.coeffs.clone();
+        let mut net: SmallVec<[S; 36]> = self.coeffs.iter().cloned().collect();
         for m in (1..=self.degree).rev() {
             step(&mut net, m, b);
         }
@@ -421,10 +428,12 @@ pub fn de_casteljau_step<S: Scalar>(net: &mut Vec<S>, m: usize, p: &Bary<S>) {
     debug_assert!(m >= 1 && net.len() >= tri_len(m));
     if let Some((mut e, p)) = endpoints_of(&net[..tri_len(m)]).zip(bary_endpoints(p)) {
         step(&mut e, m, &p);
+        e.truncate(tri_len(m - 1));
         net.truncate(e.len());
         store_endpoints(net, &e);
     } else {
         step(net, m, p);
+        net.truncate(tri_len(m - 1));
     }
 }
 
@@ -435,11 +444,12 @@ pub fn de_casteljau_step<S: Scalar>(net: &mut Vec<S>, m: usize, p: &Bary<S>) {
 // The public methods above pick the representation.
 
 fn bary_endpoints<S: Scalar>(p: &Bary<S>) -> Option<Bary<Endpoints>> {
-    endpoints_of(p).map(|e| [e[0], e[1], e[2]])
+    Some([endpoint_of(&p[0])?, endpoint_of(&p[1])?, endpoint_of(&p[2])?])
 }
 
-/// [`de_casteljau_step`] on any working representation.
-fn step<W: Arith>(net: &mut Vec<W>, m: usize, p: &[W; 3]) {
+/// [`de_casteljau_step`] on any working representation, in place: the first
+/// `tri_len(m − 1)` entries become the new net (the rest is stale).
+fn step<W: Arith>(net: &mut [W], m: usize, p: &[W; 3]) {
     // Range checks once per step instead of once per operation (products of
     // two vetted values, sums of three products).
     if W::in_fast_range(p, 480) && W::in_fast_range(&net[..tri_len(m)], 480) {
@@ -450,7 +460,7 @@ fn step<W: Arith>(net: &mut Vec<W>, m: usize, p: &[W; 3]) {
 }
 
 fn step_with<W: Arith>(
-    net: &mut Vec<W>,
+    net: &mut [W],
     m: usize,
     p: &[W; 3],
     product: impl Fn(&W, &W) -> W,
@@ -473,12 +483,14 @@ fn step_with<W: Arith>(
         }
         row = next_row;
     }
-    net.truncate(out);
 }
 
 /// [`TriBezier::subdivide`]: `g_rs = f[V1^r, V2^s, V3^(n−r−s)]`.
 fn subdivide_net<W: Arith>(coeffs: &[W], n: usize, verts: &[[W; 3]; 3]) -> Vec<W> {
-    blossom_net(coeffs.to_vec(), n, W::zero_value(), |net, m, k| step(net, m, &verts[k]))
+    blossom_net(coeffs.to_vec(), n, W::zero_value(), |net, m, k| {
+        step(net, m, &verts[k]);
+        net.truncate(tri_len(m - 1));
+    })
 }
 
 /// The blossoms `g_rs = f[V1^r, V2^s, V3^(n−r−s)]` of the degree-`n` net

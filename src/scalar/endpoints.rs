@@ -161,6 +161,23 @@ pub(crate) fn endpoints_of<S: Scalar>(v: &[S]) -> Option<Vec<Endpoints>> {
         .collect()
 }
 
+/// One value as an endpoint pair, if `S` is the interval kernel.
+#[inline]
+pub(crate) fn endpoint_of<S: Scalar>(x: &S) -> Option<Endpoints> {
+    (x as &dyn Any).downcast_ref::<Interval>().map(|&i| Endpoints::of(i))
+}
+
+/// One endpoint pair back in the interval kernel `S`; same precondition as
+/// [`from_endpoints`].
+#[inline]
+pub(crate) fn from_endpoint<S: Scalar>(e: Endpoints) -> S {
+    let mut slot: Option<S> = None;
+    if let Some(s) = (&mut slot as &mut dyn Any).downcast_mut::<Option<Interval>>() {
+        *s = Some(e.interval());
+    }
+    slot.expect("from_endpoint is only called for the interval kernel")
+}
+
 /// Endpoint pairs back in the interval kernel `S`.
 ///
 /// Only called after [`endpoints_of`] succeeded for the same `S`; panics

@@ -158,6 +158,19 @@ pub const EARLY_CERTIFY: f64 = 1e-2;
 /// The exact input, when there is one (rational coefficients).
 pub type ExactPair = [TriBezier<BigRational>; 2];
 
+/// What a run knows exactly about its input system.
+#[derive(Clone, Copy, Debug)]
+pub enum Exact<'a> {
+    /// Nothing beyond the input balls.
+    None,
+    /// The system is these rational polynomials (on the root triangle,
+    /// unscaled).
+    Rational(&'a ExactPair),
+    /// The input balls have radius 0: their float coefficients are the
+    /// system (its rationals are built only if an exact restart needs them).
+    Floats,
+}
+
 /// Counters of one run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Counters {
@@ -222,7 +235,9 @@ pub fn uniform_sign(f: &TriBall) -> Option<Sign> {
 struct Ctx<'a> {
     f: TriBall,
     g: TriBall,
-    exact: Option<&'a ExactPair>,
+    exact: Exact<'a>,
+    /// The exact pair of [`Exact::Floats`], built on first use.
+    exact_floats: Option<ExactPair>,
     /// The root pair in double-double, built on first use.
     dd: Option<[TriBallDD; 2]>,
     limits: &'a Limits,
@@ -236,8 +251,10 @@ impl Ctx<'_> {
         if self.dd.is_none() {
             let e = self.out.scale_exp;
             let pair = match self.exact {
-                Some([fe, ge]) => [fe, ge].map(|p| TriBallDD::from_rationals(p.degree(), p.coeffs()).scaled_pow2(e)),
-                None => [&self.f, &self.g].map(TriBallDD::from_ball),
+                Exact::Rational([fe, ge]) => {
+                    [fe, ge].map(|p| TriBallDD::from_rationals(p.degree(), p.coeffs()).scaled_pow2(e))
+                }
+                Exact::Floats | Exact::None => [&self.f, &self.g].map(TriBallDD::from_ball),
             };
             self.dd = Some(pair);
         }
@@ -246,7 +263,33 @@ impl Ctx<'_> {
 
     /// The exact input, if there is one and its budget is not spent.
     fn exact_left(&self) -> bool {
-        self.exact.is_some() && self.out.counters.exact_boxes < self.limits.max_exact
+        !matches!(self.exact, Exact::None) && self.out.counters.exact_boxes < self.limits.max_exact
+    }
+
+    /// The exact input pair (unscaled), built on first use for
+    /// [`Exact::Floats`] from the balls' midpoints scaled back (exactly: the
+    /// run checked that the scaling lost nothing).
+    fn exact_pair(&mut self) -> Option<&ExactPair> {
+        match self.exact {
+            Exact::Rational(p) => Some(p),
+            Exact::None => None,
+            Exact::Floats => {
+                if self.exact_floats.is_none() {
+                    let e = self.out.scale_exp;
+                    let back = |b: &TriBall| {
+                        let b = b.scaled_pow2(-e);
+                        let c = b
+                            .mid()
+                            .iter()
+                            .map(|&m| BigRational::from_float(m).unwrap_or_default())
+                            .collect();
+                        TriBezier::new(b.degree(), c).expect("same length")
+                    };
+                    self.exact_floats = Some([back(&self.f), back(&self.g)]);
+                }
+                self.exact_floats.as_ref()
+            }
+        }
     }
 }
 
@@ -256,15 +299,23 @@ impl Ctx<'_> {
 pub fn run<G: Geo>(
     f: &TriBall,
     g: &TriBall,
-    exact: Option<&ExactPair>,
+    exact: Exact,
     limits: &Limits,
     probe: &mut dyn FnMut(&TriBox) -> Probe,
 ) -> Run {
     let scale_exp = TriBall::normalizing_exponent(&[f, g]);
+    let (fs, gs) = (f.scaled_pow2(scale_exp), g.scaled_pow2(scale_exp));
+    let exact = match exact {
+        _ if !G::RIGOROUS => Exact::None,
+        // The balls are the system only while they are points.
+        Exact::Floats if fs.rad() > 0.0 || gs.rad() > 0.0 => Exact::None,
+        e => e,
+    };
     let mut cx = Ctx {
-        f: f.scaled_pow2(scale_exp),
-        g: g.scaled_pow2(scale_exp),
-        exact: exact.filter(|_| G::RIGOROUS),
+        f: fs,
+        g: gs,
+        exact,
+        exact_floats: None,
         dd: None,
         limits,
         out: Run {
@@ -438,8 +489,8 @@ fn restrict_pair(cx: &mut Ctx, precision: Precision, tb: &TriBox) -> (TriBall, T
     match precision {
         Precision::Exact if cx.exact_left() => {
             cx.out.counters.exact_boxes += 1;
-            let [fe, ge] = cx.exact.expect("exact_left");
             let e = cx.out.scale_exp;
+            let [fe, ge] = cx.exact_pair().expect("exact_left");
             // Integer arithmetic over common denominators (no gcds).
             let enclose = |p: &TriBezier<BigRational>| match subdivide_dyadic(p, &tb.verts) {
                 Some(c) => TriBall::enclose_rationals(p.degree(), &c).scaled_pow2(e),

@@ -15,6 +15,7 @@
 //! interval coefficients, so the verdicts hold for every polynomial system in
 //! the coefficient enclosures.
 
+use super::num::{Geo, GeoIv};
 use crate::poly::{Direction, TensorBezier, TriBezier};
 use crate::scalar::point;
 use inari::Interval;
@@ -137,27 +138,32 @@ impl<P: Bivariate> System<P> {
             return (Verdict::Undecided(x), None);
         }
         let xm = [point(mid[0]), point(mid[1])];
-        let fx = self.value(xm);
-        let j = self.jac.each_ref().map(|p| Self::eval(p, x));
+        // The arithmetic of K in GeoIv: inari's endpoints without its
+        // rounding-mode switch per operation.
+        let fx = self.value(xm).map(GeoIv::of);
+        let j = self.jac.each_ref().map(|p| GeoIv::of(Self::eval(p, x)));
         let jm = self.jac_mid.each_ref().map(|p| P::mid_value(p, mid[0], mid[1]));
         let Some(y) = inverse2(jm) else {
             return (Verdict::Undecided(x), None);
         };
-        let y = y.map(point);
+        let y = y.map(GeoIv::pt);
         // K = x̃ − Y F(x̃) + (I − Y J) (X − x̃)
         let yf = [y[0] * fx[0] + y[1] * fx[1], y[2] * fx[0] + y[3] * fx[1]];
-        let one = point(1.0);
+        let one = GeoIv::pt(1.0);
         let m = [
             one - (y[0] * j[0] + y[1] * j[2]),
             -(y[0] * j[1] + y[1] * j[3]),
             -(y[2] * j[0] + y[3] * j[2]),
             one - (y[2] * j[1] + y[3] * j[3]),
         ];
-        let d = [x[0] - xm[0], x[1] - xm[1]];
+        let xg = [GeoIv::of(x[0]), GeoIv::of(x[1])];
+        let mg = [GeoIv::pt(mid[0]), GeoIv::pt(mid[1])];
+        let d = [xg[0] - mg[0], xg[1] - mg[1]];
         let k = [
-            xm[0] - yf[0] + m[0] * d[0] + m[1] * d[1],
-            xm[1] - yf[1] + m[2] * d[0] + m[3] * d[1],
-        ];
+            mg[0] - yf[0] + m[0] * d[0] + m[1] * d[1],
+            mg[1] - yf[1] + m[2] * d[0] + m[3] * d[1],
+        ]
+        .map(|c| crate::scalar::interval(c.lower(), c.upper()));
         if k.iter().any(|c| c.is_empty()) {
             return (Verdict::Undecided(x), None);
         }

@@ -27,7 +27,7 @@ use crate::error::{Error, Result};
 use crate::poly::{Polynomial, TensorBezier, TriBall, TriBezier};
 use crate::scalar::{interval, point, Scalar};
 pub use driver::SplitRule;
-use driver::{path_diameters, Counters, ExactPair, Leaf, Limits, Probe};
+use driver::{path_diameters, Counters, Exact, ExactPair, Leaf, Limits, Probe};
 use inari::Interval;
 use krawczyk::{Bivariate, IBox, System, Verdict};
 pub use method::Method;
@@ -373,6 +373,7 @@ pub fn solve(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions
                 g: tg,
                 frame: Frame::Identity,
                 exact: Some([ef, eg]),
+                floats: false,
             };
             Ok(finish_exact(
                 solve_pieces(vec![piece], &global, Domain::Triangle, opts),
@@ -585,38 +586,19 @@ pub fn solve_triangle(f: &TriBezier<Interval>, g: &TriBezier<Interval>, opts: &S
     let n = f.degree().max(g.degree());
     let (f, g) = (f.elevate_cached(n), g.elevate_cached(n));
     let global = System::new(f.clone(), g.clone());
-    let exact = match (points_exact(&f), points_exact(&g)) {
-        (Some(a), Some(b)) => Some([a, b]),
-        _ => None,
-    };
+    let floats = [&f, &g].iter().all(|p| p.coeffs().iter().all(|c| c.inf() == c.sup()));
     Ok(join_undecided(solve_pieces(
         vec![Piece {
             f,
             g,
             frame: Frame::Identity,
-            exact,
+            exact: None,
+            floats,
         }],
         &global,
         Domain::Triangle,
         opts,
     )))
-}
-
-/// The exact polynomial of a point-interval input (its coefficients are
-/// exactly those floats), or `None` if any coefficient is a proper interval.
-fn points_exact(p: &TriBezier<Interval>) -> Option<TriBezier<BigRational>> {
-    let coeffs: Option<Vec<BigRational>> = p
-        .coeffs()
-        .iter()
-        .map(|c| {
-            if c.inf() == c.sup() {
-                BigRational::from_float(c.inf())
-            } else {
-                None
-            }
-        })
-        .collect();
-    TriBezier::new(p.degree(), coeffs?).ok()
 }
 
 /// One root triangle: the system on it, its frame, and the exact system when known.
@@ -625,6 +607,8 @@ struct Piece {
     g: TriBezier<Interval>,
     frame: Frame,
     exact: Option<ExactPair>,
+    /// Every coefficient is a float (a point interval): the input is exact.
+    floats: bool,
 }
 
 /// Solves `f = g = 0` on the unit square, `f`, `g` in tensor BB form there,
@@ -660,12 +644,14 @@ fn square_pieces(
             g: ga,
             frame: Frame::Identity,
             exact: ea,
+            floats: false,
         },
         Piece {
             f: fb,
             g: gb,
             frame: Frame::Reflect,
             exact: eb,
+            floats: false,
         },
     ];
     Ok(solve_pieces(pieces, &global, Domain::Square, opts))
@@ -683,12 +669,27 @@ fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &Solv
     let (mut roots, mut clusters) = (Vec::new(), Vec::new());
     let mut leftovers = Vec::new();
     let mut strips = Vec::new();
-    for Piece { f, g, frame, exact } in &pieces {
+    for Piece {
+        f,
+        g,
+        frame,
+        exact,
+        floats,
+    } in &pieces
+    {
         // Certify in the piece's own frame: its polynomials are evaluated by
         // interpolation there. (The square's other half would extrapolate with
         // barycentric weights up to ~2.3 in size, amplifying rounding by
-        // ~2.3^degree and defeating Krawczyk on tiny boxes.)
-        let local = System::new(f.clone(), g.clone());
+        // ~2.3^degree and defeating Krawczyk on tiny boxes.) The identity
+        // frame's piece is the global system.
+        let owned;
+        let local = match frame {
+            Frame::Identity => global,
+            Frame::Reflect => {
+                owned = System::new(f.clone(), g.clone());
+                &owned
+            }
+        };
         // A probe's certificate is kept: a leaf it stopped is certified on
         // the same box again below, unless it touches other leaves.
         let mut proven: Vec<(IBox, IBox)> = Vec::new();
@@ -704,7 +705,12 @@ fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &Solv
             }
         };
         let ball = |p: &TriBezier<Interval>| TriBall::enclose(p).unwrap_or_else(|_| TriBall::unbounded(p.degree()));
-        let run = driver::run::<GeoIv>(&ball(f), &ball(g), exact.as_ref(), &limits, &mut probe);
+        let exact = match (exact, floats) {
+            (Some(p), _) => Exact::Rational(p),
+            (None, true) => Exact::Floats,
+            (None, false) => Exact::None,
+        };
+        let run = driver::run::<GeoIv>(&ball(f), &ball(g), exact, &limits, &mut probe);
         add_counters(&mut stats.run, &run.counters);
         stats.krawczyk_calls += run.counters.probes;
         stats.max_level = stats
@@ -719,12 +725,12 @@ fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &Solv
                 diameters: path_diameters(&run.nodes, leaf.node),
             })
             .collect();
-        let (r, c) = certify_groups(group_overlapping(leaves), &local, &proven, &mut stats);
+        let (r, c) = certify_groups(group_overlapping(leaves), local, &proven, &mut stats);
         let to_global = |x: Found| Found {
             bx: frame.map_box(x.bx),
             diameters: x.diameters,
         };
-        let (r, undecided) = merge_roots(r, &local, &mut stats);
+        let (r, undecided) = merge_roots(r, local, &mut stats);
         roots.extend(r.into_iter().map(to_global));
         clusters.extend(c.into_iter().chain(undecided).map(to_global));
         strips.extend(run.strips.iter().map(|&[u, v]| Cluster {
@@ -1105,7 +1111,7 @@ pub fn solve_triangle_f64(f: &TriBezier<f64>, g: &TriBezier<f64>, opts: &SolveOp
     let run = driver::run::<f64>(
         &TriBall::from_points(&f),
         &TriBall::from_points(&g),
-        None,
+        Exact::None,
         &limits,
         &mut |_| Probe::Undecided,
     );
