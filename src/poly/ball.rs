@@ -46,9 +46,9 @@ use num_rational::BigRational;
 use smallvec::SmallVec;
 use std::sync::Arc;
 
-/// Coefficients stored inline up to degree 7 (36 values); larger degrees
-/// spill to the heap.
-pub type Coeffs = SmallVec<[f64; 36]>;
+/// Coefficients stored inline up to degree 4 (15 values, the preprocessed
+/// line of a cubic system included); larger degrees spill to the heap.
+pub type Coeffs = SmallVec<[f64; 16]>;
 
 /// The unit roundoff `2⁻⁵³`.
 pub const U: f64 = f64::EPSILON / 2.0;
@@ -295,7 +295,22 @@ impl TriBall {
     /// Vertices outside the triangle extrapolate (`S > 1`); a non-finite
     /// vertex gives the unbounded ball.
     pub fn subdivide(&self, verts: &[[f64; 2]; 3]) -> Self {
-        let n = self.degree;
+        let [one] = Self::subdivide_all([self], verts);
+        one
+    }
+
+    /// [`TriBall::subdivide`] of two balls of the same degree onto the same
+    /// sub-triangle in one pass (each de Casteljau step of the blossom then
+    /// works on pairs of values: one loop for both, two-lane arithmetic).
+    /// Panics on different degrees (a caller bug).
+    pub fn subdivide_pair(f: &TriBall, g: &TriBall, verts: &[[f64; 2]; 3]) -> (TriBall, TriBall) {
+        let [a, b] = Self::subdivide_all([f, g], verts);
+        (a, b)
+    }
+
+    fn subdivide_all<const L: usize>(balls: [&TriBall; L], verts: &[[f64; 2]; 3]) -> [TriBall; L] {
+        let n = balls[0].degree;
+        assert!(balls.iter().all(|b| b.degree == n), "subdivide_all needs equal degrees");
         let mut s_max = 0.0f64;
         let mut ew_max = 0.0f64;
         let bary: [[f64; 3]; 3] = verts.map(|[s, t]| {
@@ -306,19 +321,26 @@ impl TriBall {
             [s, t, w]
         });
         if !(s_max.is_finite() && ew_max.is_finite()) {
-            return Self::unbounded(n);
+            return [(); L].map(|_| Self::unbounded(n));
         }
-        let mut mid: Coeffs = std::iter::repeat_n(0.0, tri_len(n)).collect();
-        blossom(&self.mid, n, &bary, &mut mid);
-        let rad = if n == 0 {
-            self.rad
-        } else {
-            let s_hat = iv::up(s_max + ew_max);
-            let p = s_hat.powi(n as i32 - 1);
-            let growth = 1.0 + gamma(3 * n);
-            inflate(p * s_hat * self.rad + n as f64 * p * (3.0 * U * s_hat + ew_max) * self.max_mid() * growth)
-        };
-        finish(n, mid, rad)
+        let len = tri_len(n);
+        let net: SmallVec<[[f64; L]; 16]> = (0..len).map(|i| balls.map(|b| b.mid[i])).collect();
+        let mut out: SmallVec<[[f64; L]; 16]> = SmallVec::from_elem([0.0; L], len);
+        blossom(&net, n, &bary, &mut out);
+        let s_hat = iv::up(s_max + ew_max);
+        let p = if n == 0 { 1.0 } else { s_hat.powi(n as i32 - 1) };
+        let growth = 1.0 + gamma(3 * n);
+        let mut lane = 0;
+        balls.map(|b| {
+            let mid: Coeffs = out.iter().map(|v| v[lane]).collect();
+            lane += 1;
+            let rad = if n == 0 {
+                b.rad
+            } else {
+                inflate(p * s_hat * b.rad + n as f64 * p * (3.0 * U * s_hat + ew_max) * b.max_mid() * growth)
+            };
+            finish(n, mid, rad)
+        })
     }
 
     /// The L2-best approximation of degree `k` (Liu et al. 2016, §2.3.2,
@@ -446,11 +468,11 @@ impl TriBall {
     /// for choosing multipliers and directions). As [`TriBezier::jet2`].
     pub fn jet2(&self, b: &Bary<f64>) -> (f64, [f64; 2], [f64; 3]) {
         let n = self.degree;
-        let mut net = self.mid.clone();
+        let mut net: SmallVec<[[f64; 1]; 16]> = self.mid.iter().map(|&x| [x]).collect();
         for m in (3..=n).rev() {
             step(&mut net, m, b);
         }
-        let q = |net: &[f64], i, j| net[tri_index(2, i, j)];
+        let q = |net: &[[f64; 1]], i, j| net[tri_index(2, i, j)][0];
         let hess = if n >= 2 {
             let k = (n * (n - 1)) as f64;
             [
@@ -466,13 +488,13 @@ impl TriBall {
         }
         let grad = if n >= 1 {
             let k = n as f64;
-            let g = [k * (net[1] - net[0]), k * (net[2] - net[0])];
+            let g = [k * (net[1][0] - net[0][0]), k * (net[2][0] - net[0][0])];
             step(&mut net, 1, b);
             g
         } else {
             [0.0; 2]
         };
-        (net[0], grad, hess)
+        (net[0][0], grad, hess)
     }
 }
 
@@ -727,58 +749,97 @@ fn pow2(e: i32) -> f64 {
     }
 }
 
-/// One de Casteljau step in place: the float net of degree `m` becomes the net
-/// of degree `m − 1` at `p` (`c' = p_u c_{i+1,j} + p_v c_{i,j+1} + p_w c_ij`,
-/// evaluated as two FMAs over a product). Writing in storage order never
-/// overwrites an entry a later output reads (see `triangle::step_with`).
+/// One de Casteljau step on `L` float nets at once: each net of degree `m`
+/// in `src` becomes the net of degree `m − 1` at `p` in `dst`
+/// (`c' = p_u c_{i+1,j} + p_v c_{i,j+1} + p_w c_ij`, evaluated as two FMAs
+/// over a product).
 #[inline]
-fn step(net: &mut [f64], m: usize, p: &[f64; 3]) {
+fn step_from<const L: usize>(src: &[[f64; L]], dst: &mut [[f64; L]], m: usize, p: &[f64; 3]) {
     let [pu, pv, pw] = *p;
     let mut out = 0;
     let mut row = 0;
     for j in 0..m {
         let next = row + m + 1 - j;
         for i in 0..m - j {
-            let c = pv.mul_add(net[next + i], pw * net[row + i]);
-            net[out] = pu.mul_add(net[row + i + 1], c);
+            let (a, b, c) = (src[row + i + 1], src[next + i], src[row + i]);
+            let mut y = [0.0; L];
+            for l in 0..L {
+                y[l] = pu.mul_add(a[l], pv.mul_add(b[l], pw * c[l]));
+            }
+            dst[out] = y;
             out += 1;
         }
         row = next;
     }
 }
 
-/// The blossoms `out[ij] = f[P1^i, P2^j, P3^(n−i−j)]` of the float net `c`
-/// (as `triangle::blossom_net`: `i` steps at `P1`, then `j` at `P2`, then the
-/// rest at `P3`), with scratch on the stack for small degrees.
-fn blossom(c: &[f64], n: usize, p: &[[f64; 3]; 3], out: &mut [f64]) {
-    let len = tri_len(n);
-    let mut scratch: SmallVec<[f64; 108]> = std::iter::repeat_n(0.0, 3 * len).collect();
-    let (a, rest) = scratch.split_at_mut(len);
-    let (b, cc) = rest.split_at_mut(len);
-    a.copy_from_slice(c);
-    for r in 0..=n {
-        if r > 0 {
-            step(a, n - r + 1, &p[0]);
-        }
-        let la = tri_len(n - r);
-        b[..la].copy_from_slice(&a[..la]);
-        for s in 0..=n - r {
-            if s > 0 {
-                step(b, n - r - s + 1, &p[1]);
+/// [`step_from`] in place: writing in storage order never overwrites an
+/// entry a later output reads (see `triangle::step_with`).
+#[inline]
+fn step<const L: usize>(net: &mut [[f64; L]], m: usize, p: &[f64; 3]) {
+    let [pu, pv, pw] = *p;
+    let mut out = 0;
+    let mut row = 0;
+    for j in 0..m {
+        let next = row + m + 1 - j;
+        for i in 0..m - j {
+            let (a, b, c) = (net[row + i + 1], net[next + i], net[row + i]);
+            let mut y = [0.0; L];
+            for l in 0..L {
+                y[l] = pu.mul_add(a[l], pv.mul_add(b[l], pw * c[l]));
             }
-            let d = n - r - s;
-            out[tri_index(n, r, s)] = match d {
-                0 => b[0],
-                1 => p[2][0].mul_add(b[1], p[2][1].mul_add(b[2], p[2][2] * b[0])),
-                _ => {
-                    let lb = tri_len(d);
-                    cc[..lb].copy_from_slice(&b[..lb]);
-                    for m in (1..=d).rev() {
-                        step(cc, m, &p[2]);
-                    }
-                    cc[0]
-                }
-            };
+            net[out] = y;
+            out += 1;
+        }
+        row = next;
+    }
+}
+
+/// The value at `p` of the `L` nets of degree `d` in `src` (a full pyramid:
+/// the first step out of place into `scratch`, the rest in place).
+#[inline]
+fn pyramid<const L: usize>(src: &[[f64; L]], scratch: &mut [[f64; L]], d: usize, p: &[f64; 3]) -> [f64; L] {
+    if d == 0 {
+        return src[0];
+    }
+    step_from(src, scratch, d, p);
+    for m in (1..d).rev() {
+        step(scratch, m, p);
+    }
+    scratch[0]
+}
+
+/// The blossoms `out[ij] = f[P1^i, P2^j, P3^(n−i−j)]` of `L` float nets
+/// `c` (as `triangle::blossom_net`: `i` steps at `P1`, then `j` at `P2`,
+/// then the rest at `P3`). Every first step reads its source out of place,
+/// so no net is ever copied; scratch lives on the stack for small degrees.
+fn blossom<const L: usize>(c: &[[f64; L]], n: usize, p: &[[f64; 3]; 3], out: &mut [[f64; L]]) {
+    let len = tri_len(n);
+    let mut buf: SmallVec<[[f64; L]; 48]> = SmallVec::from_elem([0.0; L], 3 * len);
+    let (a, rest) = buf.split_at_mut(len);
+    let (b, cc) = rest.split_at_mut(len);
+    for r in 0..=n {
+        // A_r: r steps at P1 (A_0 is the input itself).
+        let ar: &[[f64; L]] = if r == 0 {
+            c
+        } else {
+            if r == 1 {
+                step_from(c, a, n, &p[0]);
+            } else {
+                step(a, n - r + 1, &p[0]);
+            }
+            a
+        };
+        let top = n - r;
+        for s in 0..=top {
+            // B_s: s steps at P2 of A_r (B_0 = A_r).
+            if s == 1 {
+                step_from(ar, b, top, &p[1]);
+            } else if s > 1 {
+                step(b, top - s + 1, &p[1]);
+            }
+            let src: &[[f64; L]] = if s == 0 { ar } else { b };
+            out[tri_index(n, r, s)] = pyramid(src, cc, top - s, &p[2]);
         }
     }
 }

@@ -470,7 +470,7 @@ fn cut_vanishing_edges(f: &TriBall, g: &TriBall, strips: &mut Vec<[[f64; 2]; 2]>
     if cut[1] {
         strips.push([[0.0, 1.0], [0.0, EDGE_STRIP]]);
     }
-    let (fa, fb) = (f.subdivide(&tb.verts), g.subdivide(&tb.verts));
+    let (fa, fb) = TriBall::subdivide_pair(f, g, &tb.verts);
     (tb, fa, fb)
 }
 
@@ -503,7 +503,10 @@ fn restrict_pair(cx: &mut Ctx, precision: Precision, tb: &TriBox) -> (TriBall, T
             let [f, g] = cx.dd();
             (f.subdivide(&tb.verts), g.subdivide(&tb.verts), Precision::Compensated)
         }
-        Precision::Float => (cx.f.subdivide(&tb.verts), cx.g.subdivide(&tb.verts), Precision::Float),
+        Precision::Float => {
+            let (fa, fb) = TriBall::subdivide_pair(&cx.f, &cx.g, &tb.verts);
+            (fa, fb, Precision::Float)
+        }
     }
 }
 
