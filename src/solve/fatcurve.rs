@@ -141,16 +141,24 @@ pub enum Fat<S> {
 
 impl<S: Geo> Fat<S> {
     fn possibly_contains(&self, s: S, t: S) -> bool {
-        let (val, d, scale) = match self {
-            Fat::Line(l, d) => (l.eval(s, t), *d, l.c.iter().map(|c| c.mag()).sum::<f64>()),
-            Fat::Conic(q, d) => (q.eval(s, t), *d, q.c.iter().map(|c| c.mag()).sum::<f64>()),
+        let (val, d) = match self {
+            Fat::Line(l, d) => (l.eval(s, t), *d),
+            Fat::Conic(q, d) => (q.eval(s, t), *d),
         };
         // The float kernel's candidates lie on the boundary curves only up to
         // the rounding of their computation (root solving loses digits near
         // tangency): allow that much on the scale of the curve's terms
         // (`s, t ∈ [0, 1]`), or boundary points are lost. Rigorous kernels
         // carry it in their enclosures.
-        let d = if S::RIGOROUS { d } else { d + 1e-9 * scale };
+        let d = if S::RIGOROUS {
+            d
+        } else {
+            let scale = match self {
+                Fat::Line(l, _) => l.c.iter().map(|c| c.mag()).sum::<f64>(),
+                Fat::Conic(q, _) => q.c.iter().map(|c| c.mag()).sum::<f64>(),
+            };
+            d + 1e-9 * scale
+        };
         val.possibly_le(d) && val.possibly_ge(-d)
     }
 }
@@ -273,21 +281,28 @@ impl<G: Geo> BoundaryLine<G> {
 
 fn clip_in<G: Geo>(fats: &[Fat<G>]) -> ClipBounds {
     let (zero, one) = (G::pt(0.0), G::pt(1.0));
+    // The tri-box's edges s = 0, t = 0, w = 0 as graphs (see `cut_of`):
+    // s = 0·t + 0, t = 0·s + 0, t = −s + 1 (exact).
+    let edge = |c: [G; 3], by_s: bool, m: G, k: G| BoundaryLine {
+        src: usize::MAX - 1,
+        l: Linear { c },
+        meets: true,
+        cut: Cut::Param { by_s, m, k },
+    };
     let edges = [
-        Linear { c: [zero, one, zero] },
-        Linear { c: [zero, zero, one] },
-        Linear { c: [-one, one, one] },
+        edge([zero, one, zero], false, zero, zero),
+        edge([zero, zero, one], true, zero, zero),
+        edge([-one, one, one], true, -one, one),
     ];
-    let mut lines: Vec<BoundaryLine<G>> = Vec::with_capacity(3 + 2 * fats.len());
-    lines.extend(edges.iter().enumerate().map(|(i, l)| BoundaryLine::new(i, *l)));
-    let mut conics: Vec<(Quadratic<G>, f64)> = Vec::with_capacity(fats.len());
-    let mut tangents: Vec<BoundaryLine<G>> = Vec::with_capacity(3 * fats.len());
-    let mut centres: Vec<[Linear<G>; 2]> = Vec::with_capacity(fats.len());
+    let mut lines: SmallVec<[BoundaryLine<G>; 4]> = SmallVec::new();
+    let mut conics: SmallVec<[(Quadratic<G>, f64); 1]> = SmallVec::new();
+    let mut tangents: SmallVec<[BoundaryLine<G>; 3]> = SmallVec::new();
+    let mut centres: SmallVec<[[Linear<G>; 2]; 1]> = SmallVec::new();
     for (idx, fat) in fats.iter().enumerate() {
         match fat {
             Fat::Line(l, d) => {
-                lines.push(BoundaryLine::new(3 + idx, l.shifted(*d)));
-                lines.push(BoundaryLine::new(3 + idx, l.shifted(-*d)));
+                lines.push(BoundaryLine::new(idx, l.shifted(*d)));
+                lines.push(BoundaryLine::new(idx, l.shifted(-*d)));
             }
             Fat::Conic(q, d) => {
                 conics.push((*q, *d));
@@ -316,6 +331,19 @@ fn clip_in<G: Geo>(fats: &[Fat<G>]) -> ClipBounds {
     };
     // Each loop stops as soon as the result is settled (`push` says so).
     'pairs: {
+        // Edges meet edges at the vertices (exact).
+        for v in [[zero, zero], [zero, one], [one, zero]] {
+            if push(v) {
+                break 'pairs;
+            }
+        }
+        for e in 0..edges.len() {
+            for line in lines.iter().filter(|l| l.meets) {
+                if edge_line(e, &line.l, &mut push) {
+                    break 'pairs;
+                }
+            }
+        }
         for (a, la) in lines.iter().enumerate() {
             for lb in &lines[a + 1..] {
                 if la.src != lb.src && la.meets && lb.meets && line_line(&la.l, &lb.l, &mut push) {
@@ -326,11 +354,11 @@ fn clip_in<G: Geo>(fats: &[Fat<G>]) -> ClipBounds {
         for (q, d) in &conics {
             // The two level curves `Q = ±δ` differ in the constant term only.
             let levels = [q.shifted(*d).c[0], q.shifted(-*d).c[0]];
-            for line in lines.iter().chain(&tangents) {
+            for line in edges.iter().chain(&lines).chain(&tangents) {
                 // Only the piece of the line inside every other strip can hold
                 // a feasible candidate.
                 let range = fats.iter().enumerate().fold([0.0, 1.0], |r, (idx, fat)| match fat {
-                    Fat::Line(l, d) if line.src != 3 + idx => inside_strip(&line.cut, l, *d, r),
+                    Fat::Line(l, d) if line.src != idx => inside_strip(&line.cut, l, *d, r),
                     _ => r,
                 });
                 if line_conic(&line.cut, q, levels, range, &mut push) {
@@ -375,12 +403,32 @@ fn meets_unit_square<G: Geo>(l: &Linear<G>) -> bool {
 /// they coincide the minimizers are end points found through other pairs.
 fn line_line<G: Geo>(a: &Linear<G>, b: &Linear<G>, push: &mut impl FnMut([G; 2]) -> bool) -> bool {
     let det = a.c[1] * b.c[2] - a.c[2] * b.c[1];
-    if det.sign_class() == Sign::Zero {
-        return false;
-    }
     // a1 s + a2 t = −a0, b1 s + b2 t = −b0 (Cramer).
     let ns = a.c[2] * b.c[0] - a.c[0] * b.c[2];
     let nt = a.c[0] * b.c[1] - a.c[1] * b.c[0];
+    cramer(det, ns, nt, push)
+}
+
+/// [`line_line`] of edge `e` of the tri-box (`s = 0`, `t = 0`, `w = 0`, i.e.
+/// `[0, 1, 0]`, `[0, 0, 1]`, `[−1, 1, 1]`) and `b`: Cramer's terms without
+/// the products with the edge's exact zeros and ones (which are exact, so
+/// the enclosures are the same).
+fn edge_line<G: Geo>(e: usize, b: &Linear<G>, push: &mut impl FnMut([G; 2]) -> bool) -> bool {
+    let [b0, b1, b2] = b.c;
+    let zero = G::pt(0.0);
+    let (det, ns, nt) = match e {
+        0 => (b2, zero, -b0),
+        1 => (-b1, b0, zero),
+        _ => (b2 - b1, b0 + b2, -b1 - b0),
+    };
+    cramer(det, ns, nt, push)
+}
+
+/// The point `(ns, nt) / det` of [`line_line`], in `[0, 1]²`, to `push`.
+fn cramer<G: Geo>(det: G, ns: G, nt: G, push: &mut impl FnMut([G; 2]) -> bool) -> bool {
+    if det.sign_class() == Sign::Zero {
+        return false;
+    }
     let ts = G::div_pieces(nt, det);
     for s in G::div_pieces(ns, det).into_iter().flatten() {
         for t in ts.into_iter().flatten() {

@@ -185,8 +185,16 @@ impl<P: Bivariate> System<P> {
     /// roots in `x0` are the one root. On success returns the contracted box
     /// (iterated `K` until it stops shrinking), which holds that root.
     pub fn certify(&self, x0: IBox) -> Verdict {
+        self.certify_within(x0, 10)
+    }
+
+    /// [`System::certify`] with at most `rounds` Krawczyk steps of
+    /// epsilon-inflation before it gives up (`Undecided`): a quick probe of a
+    /// box during the iteration, where giving up only costs further clips,
+    /// while the final certification of a leaf tries hard.
+    pub fn certify_within(&self, x0: IBox, rounds: usize) -> Verdict {
         let mut x = x0.map(|c| inflate(c, 0.1));
-        for _ in 0..10 {
+        for _ in 0..rounds {
             let (verdict, raw) = self.step(x);
             match verdict {
                 Verdict::Unique(k) => return Verdict::Unique(self.contract(k)),

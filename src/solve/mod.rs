@@ -695,7 +695,7 @@ fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &Solv
         let mut proven: Vec<(IBox, IBox)> = Vec::new();
         let mut probe = |tb: &tribox::TriBox| {
             let x = tribox::box_of(tb);
-            match local.certify(x) {
+            match local.certify_within(x, PROBE_ROUNDS) {
                 Verdict::Unique(k) => {
                     proven.push((x, k));
                     Probe::Unique
@@ -920,6 +920,12 @@ fn hull_of(group: Vec<Found>) -> Found {
         },
     })
 }
+
+/// Krawczyk steps a probe of a tri-box during the iteration may take before
+/// it gives up: a simple root well inside a converging tri-box is certified
+/// by the first or second step; one that needs more is left to further clips
+/// (and the final certification, which tries harder).
+const PROBE_ROUNDS: usize = 2;
 
 /// Largest group whose leaves are certified one by one when their hull fails.
 const SMALL_GROUP: usize = 16;
