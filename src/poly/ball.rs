@@ -295,8 +295,13 @@ impl TriBall {
     /// Vertices outside the triangle extrapolate (`S > 1`); a non-finite
     /// vertex gives the unbounded ball.
     pub fn subdivide(&self, verts: &[[f64; 2]; 3]) -> Self {
-        let [one] = Self::subdivide_all([self], verts);
-        one
+        let Some(sub) = Subdivision::new(self.degree, verts) else {
+            return Self::unbounded(self.degree);
+        };
+        let net: SmallVec<[[f64; 1]; 16]> = self.mid.iter().map(|&x| [x]).collect();
+        let mut out: SmallVec<[[f64; 1]; 16]> = SmallVec::from_elem([0.0; 1], net.len());
+        blossom(&net, self.degree, &sub.bary, &mut out);
+        sub.ball(self, out.iter().map(|v| v[0]).collect())
     }
 
     /// [`TriBall::subdivide`] of two balls of the same degree onto the same
@@ -304,43 +309,18 @@ impl TriBall {
     /// works on pairs of values: one loop for both, two-lane arithmetic).
     /// Panics on different degrees (a caller bug).
     pub fn subdivide_pair(f: &TriBall, g: &TriBall, verts: &[[f64; 2]; 3]) -> (TriBall, TriBall) {
-        let [a, b] = Self::subdivide_all([f, g], verts);
-        (a, b)
-    }
-
-    fn subdivide_all<const L: usize>(balls: [&TriBall; L], verts: &[[f64; 2]; 3]) -> [TriBall; L] {
-        let n = balls[0].degree;
-        assert!(balls.iter().all(|b| b.degree == n), "subdivide_all needs equal degrees");
-        let mut s_max = 0.0f64;
-        let mut ew_max = 0.0f64;
-        let bary: [[f64; 3]; 3] = verts.map(|[s, t]| {
-            let one_minus_s = 1.0 - s;
-            let w = one_minus_s - t;
-            s_max = s_max.max(s.abs() + t.abs() + w.abs());
-            ew_max = ew_max.max(U * (one_minus_s.abs() + w.abs()));
-            [s, t, w]
-        });
-        if !(s_max.is_finite() && ew_max.is_finite()) {
-            return [(); L].map(|_| Self::unbounded(n));
-        }
-        let len = tri_len(n);
-        let net: SmallVec<[[f64; L]; 16]> = (0..len).map(|i| balls.map(|b| b.mid[i])).collect();
-        let mut out: SmallVec<[[f64; L]; 16]> = SmallVec::from_elem([0.0; L], len);
-        blossom(&net, n, &bary, &mut out);
-        let s_hat = iv::up(s_max + ew_max);
-        let p = if n == 0 { 1.0 } else { s_hat.powi(n as i32 - 1) };
-        let growth = 1.0 + gamma(3 * n);
-        let mut lane = 0;
-        balls.map(|b| {
-            let mid: Coeffs = out.iter().map(|v| v[lane]).collect();
-            lane += 1;
-            let rad = if n == 0 {
-                b.rad
-            } else {
-                inflate(p * s_hat * b.rad + n as f64 * p * (3.0 * U * s_hat + ew_max) * b.max_mid() * growth)
-            };
-            finish(n, mid, rad)
-        })
+        let n = f.degree;
+        assert_eq!(n, g.degree, "subdivide_pair needs equal degrees");
+        let Some(sub) = Subdivision::new(n, verts) else {
+            return (Self::unbounded(n), Self::unbounded(n));
+        };
+        let net: SmallVec<[[f64; 2]; 16]> = f.mid.iter().zip(&g.mid).map(|(&a, &b)| [a, b]).collect();
+        let mut out: SmallVec<[[f64; 2]; 16]> = SmallVec::from_elem([0.0; 2], net.len());
+        blossom(&net, n, &sub.bary, &mut out);
+        (
+            sub.ball(f, out.iter().map(|v| v[0]).collect()),
+            sub.ball(g, out.iter().map(|v| v[1]).collect()),
+        )
     }
 
     /// The L2-best approximation of degree `k` (Liu et al. 2016, §2.3.2,
@@ -495,6 +475,54 @@ impl TriBall {
             [0.0; 2]
         };
         (net[0][0], grad, hess)
+    }
+}
+
+/// The vertices of a sub-triangle in barycentric coordinates, with what the
+/// radius of [`TriBall::subdivide`] needs.
+struct Subdivision {
+    degree: usize,
+    bary: [[f64; 3]; 3],
+    /// `Ŝ = max (|s| + |t| + |w̃|) + e_w`, rounded up.
+    s_hat: f64,
+    ew_max: f64,
+}
+
+impl Subdivision {
+    /// `None` for a non-finite vertex.
+    fn new(degree: usize, verts: &[[f64; 2]; 3]) -> Option<Self> {
+        let mut s_max = 0.0f64;
+        let mut ew_max = 0.0f64;
+        let bary: [[f64; 3]; 3] = verts.map(|[s, t]| {
+            let one_minus_s = 1.0 - s;
+            let w = one_minus_s - t;
+            s_max = s_max.max(s.abs() + t.abs() + w.abs());
+            ew_max = ew_max.max(U * (one_minus_s.abs() + w.abs()));
+            [s, t, w]
+        });
+        (s_max.is_finite() && ew_max.is_finite()).then(|| Self {
+            degree,
+            bary,
+            s_hat: iv::up(s_max + ew_max),
+            ew_max,
+        })
+    }
+
+    /// The ball with the blossoms `mid` of `from`'s midpoints and the radius
+    /// of [`TriBall::subdivide`].
+    fn ball(&self, from: &TriBall, mid: Coeffs) -> TriBall {
+        let n = self.degree;
+        let rad = if n == 0 {
+            from.rad
+        } else {
+            let p = self.s_hat.powi(n as i32 - 1);
+            let growth = 1.0 + gamma(3 * n);
+            inflate(
+                p * self.s_hat * from.rad
+                    + n as f64 * p * (3.0 * U * self.s_hat + self.ew_max) * from.max_mid() * growth,
+            )
+        };
+        finish(n, mid, rad)
     }
 }
 
@@ -753,7 +781,7 @@ fn pow2(e: i32) -> f64 {
 /// in `src` becomes the net of degree `m − 1` at `p` in `dst`
 /// (`c' = p_u c_{i+1,j} + p_v c_{i,j+1} + p_w c_ij`, evaluated as two FMAs
 /// over a product).
-#[inline]
+#[inline(always)]
 fn step_from<const L: usize>(src: &[[f64; L]], dst: &mut [[f64; L]], m: usize, p: &[f64; 3]) {
     let [pu, pv, pw] = *p;
     let mut out = 0;
@@ -775,7 +803,7 @@ fn step_from<const L: usize>(src: &[[f64; L]], dst: &mut [[f64; L]], m: usize, p
 
 /// [`step_from`] in place: writing in storage order never overwrites an
 /// entry a later output reads (see `triangle::step_with`).
-#[inline]
+#[inline(always)]
 fn step<const L: usize>(net: &mut [[f64; L]], m: usize, p: &[f64; 3]) {
     let [pu, pv, pw] = *p;
     let mut out = 0;
@@ -797,7 +825,7 @@ fn step<const L: usize>(net: &mut [[f64; L]], m: usize, p: &[f64; 3]) {
 
 /// The value at `p` of the `L` nets of degree `d` in `src` (a full pyramid:
 /// the first step out of place into `scratch`, the rest in place).
-#[inline]
+#[inline(always)]
 fn pyramid<const L: usize>(src: &[[f64; L]], scratch: &mut [[f64; L]], d: usize, p: &[f64; 3]) -> [f64; L] {
     if d == 0 {
         return src[0];
@@ -814,6 +842,19 @@ fn pyramid<const L: usize>(src: &[[f64; L]], scratch: &mut [[f64; L]], d: usize,
 /// then the rest at `P3`). Every first step reads its source out of place,
 /// so no net is ever copied; scratch lives on the stack for small degrees.
 fn blossom<const L: usize>(c: &[[f64; L]], n: usize, p: &[[f64; 3]; 3], out: &mut [[f64; L]]) {
+    // A constant degree lets the compiler unroll the short loops of the
+    // common low degrees completely.
+    match n {
+        1 => blossom_n(c, 1, p, out),
+        2 => blossom_n(c, 2, p, out),
+        3 => blossom_n(c, 3, p, out),
+        4 => blossom_n(c, 4, p, out),
+        _ => blossom_n(c, n, p, out),
+    }
+}
+
+#[inline(always)]
+fn blossom_n<const L: usize>(c: &[[f64; L]], n: usize, p: &[[f64; 3]; 3], out: &mut [[f64; L]]) {
     let len = tri_len(n);
     let mut buf: SmallVec<[[f64; L]; 48]> = SmallVec::from_elem([0.0; L], 3 * len);
     let (a, rest) = buf.split_at_mut(len);
