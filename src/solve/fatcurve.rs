@@ -283,19 +283,19 @@ fn clip_in<G: Geo>(fats: &[Fat<G>]) -> ClipBounds {
     let (zero, one) = (G::pt(0.0), G::pt(1.0));
     // The tri-box's edges s = 0, t = 0, w = 0 as graphs (see `cut_of`):
     // s = 0·t + 0, t = 0·s + 0, t = −s + 1 (exact).
-    let edge = |c: [G; 3], by_s: bool, m: G, k: G| BoundaryLine {
-        src: usize::MAX - 1,
+    let edge = |src: usize, c: [G; 3], by_s: bool, m: G, k: G| BoundaryLine {
+        src,
         l: Linear { c },
         meets: true,
         cut: Cut::Param { by_s, m, k },
     };
     let edges = [
-        edge([zero, one, zero], false, zero, zero),
-        edge([zero, zero, one], true, zero, zero),
-        edge([-one, one, one], true, -one, one),
+        edge(EDGE_S, [zero, one, zero], false, zero, zero),
+        edge(EDGE_T, [zero, zero, one], true, zero, zero),
+        edge(EDGE_W, [-one, one, one], true, -one, one),
     ];
     let mut lines: SmallVec<[BoundaryLine<G>; 4]> = SmallVec::new();
-    let mut conics: SmallVec<[(Quadratic<G>, f64); 1]> = SmallVec::new();
+    let mut conics: SmallVec<[(Quadratic<G>, f64, usize); 1]> = SmallVec::new();
     let mut tangents: SmallVec<[BoundaryLine<G>; 3]> = SmallVec::new();
     let mut centres: SmallVec<[[Linear<G>; 2]; 1]> = SmallVec::new();
     for (idx, fat) in fats.iter().enumerate() {
@@ -305,7 +305,7 @@ fn clip_in<G: Geo>(fats: &[Fat<G>]) -> ClipBounds {
                 lines.push(BoundaryLine::new(idx, l.shifted(-*d)));
             }
             Fat::Conic(q, d) => {
-                conics.push((*q, *d));
+                conics.push((*q, *d, idx));
                 let tl = q.tangency_lines();
                 tangents.extend(tl.iter().map(|l| BoundaryLine::new(usize::MAX, *l)));
                 centres.push([tl[0], tl[1]]);
@@ -316,15 +316,22 @@ fn clip_in<G: Geo>(fats: &[Fat<G>]) -> ClipBounds {
     // ulps of 1 to either side of it: accept them, or a root on the edge is
     // clipped away. Rigorous kernels need no slack.
     let slack = if G::RIGOROUS { 0.0 } else { -1e-12 };
-    let feasible = |s: G, t: G| {
-        s.possibly_ge(slack)
-            && t.possibly_ge(slack)
-            && (G::pt(1.0) - s - t).possibly_ge(slack)
-            && fats.iter().all(|f| f.possibly_contains(s, t))
+    // A candidate's exact point satisfies the constraints it is constructed
+    // on (a strip side, a level curve, a tri-box edge): `on` marks them
+    // ([`On`]), and only the others are tested. (Their tests would answer
+    // "possibly" anyway, so the result is the same.)
+    let feasible = |s: G, t: G, on: On| {
+        (on.has(On::S) || s.possibly_ge(slack))
+            && (on.has(On::T) || t.possibly_ge(slack))
+            && (on.has(On::W) || (G::pt(1.0) - s - t).possibly_ge(slack))
+            && fats
+                .iter()
+                .enumerate()
+                .all(|(i, f)| on.has(On::fat(i)) || f.possibly_contains(s, t))
     };
     let mut bounds = Bounds::new();
-    let mut push = |[s, t]: [G; 2]| {
-        if bounds.could_lower(s, t) && feasible(s, t) {
+    let mut push = |[s, t]: [G; 2], on: On| {
+        if bounds.could_lower(s, t) && feasible(s, t, on) {
             bounds.add(s, t);
         }
         bounds.settled()
@@ -332,26 +339,29 @@ fn clip_in<G: Geo>(fats: &[Fat<G>]) -> ClipBounds {
     // Each loop stops as soon as the result is settled (`push` says so).
     'pairs: {
         // Edges meet edges at the vertices (exact).
+        let corners = On(On::S.0 | On::T.0 | On::W.0);
         for v in [[zero, zero], [zero, one], [one, zero]] {
-            if push(v) {
+            if push(v, corners) {
                 break 'pairs;
             }
         }
         for e in 0..edges.len() {
             for line in lines.iter().filter(|l| l.meets) {
-                if edge_line(e, &line.l, &mut push) {
+                let on = On::edge(e).and(On::fat(line.src));
+                if edge_line(e, &line.l, &mut |p| push(p, on)) {
                     break 'pairs;
                 }
             }
         }
         for (a, la) in lines.iter().enumerate() {
             for lb in &lines[a + 1..] {
-                if la.src != lb.src && la.meets && lb.meets && line_line(&la.l, &lb.l, &mut push) {
+                let on = On::fat(la.src).and(On::fat(lb.src));
+                if la.src != lb.src && la.meets && lb.meets && line_line(&la.l, &lb.l, &mut |p| push(p, on)) {
                     break 'pairs;
                 }
             }
         }
-        for (q, d) in &conics {
+        for (q, d, qi) in &conics {
             // The two level curves `Q = ±δ` differ in the constant term only.
             let levels = [q.shifted(*d).c[0], q.shifted(-*d).c[0]];
             for line in edges.iter().chain(&lines).chain(&tangents) {
@@ -361,18 +371,58 @@ fn clip_in<G: Geo>(fats: &[Fat<G>]) -> ClipBounds {
                     Fat::Line(l, d) if line.src != idx => inside_strip(&line.cut, l, *d, r),
                     _ => r,
                 });
-                if line_conic(&line.cut, q, levels, range, &mut push) {
+                let on = On::fat(*qi).and(match line.src {
+                    EDGE_S => On::S,
+                    EDGE_T => On::T,
+                    EDGE_W => On::W,
+                    src => On::fat(src),
+                });
+                if line_conic(&line.cut, q, levels, range, &mut |p| push(p, on)) {
                     break 'pairs;
                 }
             }
         }
         for [a, b] in &centres {
-            if meets_unit_square(a) && meets_unit_square(b) && line_line(a, b, &mut push) {
+            if meets_unit_square(a) && meets_unit_square(b) && line_line(a, b, &mut |p| push(p, On(0))) {
                 break 'pairs;
             }
         }
     }
     bounds.finish(G::RIGOROUS)
+}
+
+/// `src` of the tri-box's edges `s = 0`, `t = 0`, `w = 0` (fat curves use
+/// their index, tangency lines `usize::MAX`).
+const EDGE_S: usize = usize::MAX - 3;
+const EDGE_T: usize = usize::MAX - 2;
+const EDGE_W: usize = usize::MAX - 1;
+
+/// The constraints a candidate satisfies by construction: bit 0–2 the
+/// tri-box's `s ≥ 0`, `t ≥ 0`, `w ≥ 0`, bit `3 + i` fat curve `i`.
+#[derive(Clone, Copy)]
+struct On(u32);
+
+impl On {
+    const S: On = On(1);
+    const T: On = On(2);
+    const W: On = On(4);
+
+    /// Fat curve `i` (nothing for a `src` that is no fat curve).
+    fn fat(i: usize) -> On {
+        On(if i < 29 { 8 << i } else { 0 })
+    }
+
+    fn edge(e: usize) -> On {
+        [On::S, On::T, On::W][e]
+    }
+
+    fn and(self, o: On) -> On {
+        On(self.0 | o.0)
+    }
+
+    fn has(self, o: On) -> bool {
+        self.0 & o.0 == o.0
+    }
 }
 
 /// Whether `a0 + a1 s + a2 t = 0` can meet the unit square `[0, 1]²` (the
