@@ -897,10 +897,33 @@ fn mat_vec(mat: &[f64], v: &[f64], rows: usize) -> Coeffs {
 /// The rounded L2 projection (`n → k`) and elevation (`k → n`) matrices, from
 /// the crate's cache of exact matrices converted to `f64` (nearest).
 fn reduction_matrices(n: usize, k: usize) -> (Arc<[f64]>, Arc<[f64]>) {
-    (
-        f64::cached_matrix(MatrixKey::TriReduce(n, k), || l2::tri_reduction_exact(n, k)),
-        elevation_matrix(k, n),
-    )
+    // The reductions of the clipping methods (k = 1, 2) of moderate degrees
+    // are looked up in a small per-thread table indexed by (n, k): no hashing
+    // and no reference count traffic on a shared cache line per clip.
+    const TOP: usize = 24;
+    type Pair = (Arc<[f64]>, Arc<[f64]>);
+    thread_local! {
+        static TABLE: std::cell::RefCell<Vec<Option<Pair>>> = const { std::cell::RefCell::new(Vec::new()) };
+    }
+    let build = || {
+        (
+            f64::cached_matrix(MatrixKey::TriReduce(n, k), || l2::tri_reduction_exact(n, k)),
+            elevation_matrix(k, n),
+        )
+    };
+    if n > TOP || k > 2 {
+        return build();
+    }
+    let slot = n * 3 + k;
+    TABLE
+        .try_with(|t| {
+            let mut t = t.borrow_mut();
+            if t.len() <= slot {
+                t.resize(3 * (TOP + 1), None);
+            }
+            t[slot].get_or_insert_with(build).clone()
+        })
+        .unwrap_or_else(|_| build())
 }
 
 fn elevation_matrix(from: usize, to: usize) -> Arc<[f64]> {

@@ -264,9 +264,14 @@ impl<P: Bivariate> System<P> {
             let f = self.value_mid.each_ref().map(|p| P::mid_value(p, x[0], x[1]));
             let j = self.jac_mid.each_ref().map(|p| P::mid_value(p, x[0], x[1]));
             let y = inverse2(j)?;
-            x = [x[0] - (y[0] * f[0] + y[1] * f[1]), x[1] - (y[2] * f[0] + y[3] * f[1])];
+            let dx = [y[0] * f[0] + y[1] * f[1], y[2] * f[0] + y[3] * f[1]];
+            x = [x[0] - dx[0], x[1] - dx[1]];
             if !(x[0].is_finite() && x[1].is_finite()) {
                 return None;
+            }
+            // Converged to rounding: a further step moves by ulps at most.
+            if dx.iter().zip(&x).all(|(d, c)| d.abs() <= 4.0 * f64::EPSILON * c.abs().max(1.0)) {
+                break;
             }
         }
         // 32 ulps of the coordinate (of 1 near 0), then 10⁴ times that for a

@@ -357,7 +357,7 @@ impl Mul for GeoIv {
     /// `min(x_c·c, x_d·d)` with `x_t` chosen by the sign of `t`, and the high
     /// end alike; when `x ≥ 0` one product per end suffices (the low end at
     /// `c`, the high end at `d`).
-    #[inline]
+    #[inline(always)]
     fn mul(self, y: Self) -> Self {
         if !exact_safe2(self.0, y.0) {
             return Self::of_iv(self.iv().mul(y.iv()));

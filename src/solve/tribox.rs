@@ -32,8 +32,11 @@ fn sub(a: Pt, b: Pt) -> Pt {
     [a[0] - b[0], a[1] - b[1]]
 }
 
+/// The Euclidean length (for step sizes and diameters, not proofs). Tri-box
+/// coordinates are near `[0, 1]`, so `√(x² + y²)` cannot overflow and
+/// libm's slower `hypot` buys nothing; a non-finite result still propagates.
 fn norm(a: Pt) -> f64 {
-    a[0].hypot(a[1])
+    (a[0] * a[0] + a[1] * a[1]).sqrt()
 }
 
 /// `orient(a, b, c)`: twice the signed area, enclosed (inari's endpoints,
