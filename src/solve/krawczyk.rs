@@ -127,24 +127,34 @@ impl<P: Bivariate> System<P> {
 
     /// One Krawczyk step on `x`.
     pub fn krawczyk(&self, x: IBox) -> Verdict {
-        self.step(x).0
+        self.step(x, None).0
     }
 
     /// [`System::krawczyk`], with `K(X)` itself (not intersected with `X`)
     /// when it could be computed.
-    fn step(&self, x: IBox) -> (Verdict, Option<IBox>) {
+    ///
+    /// `jac`, when given, is an enclosure of the Jacobian over a box that
+    /// contains `x` (the box a proof started from): any enclosure over `x`
+    /// makes `K` valid, a wider one only widens it, and for the tiny boxes
+    /// of the contraction the difference is far below their width.
+    fn step(&self, x: IBox, jac: Option<[GeoIv; 4]>) -> (Verdict, Option<IBox>) {
+        self.step_jac(x, jac).0
+    }
+
+    /// [`System::step`], also returning the Jacobian enclosure it used.
+    fn step_jac(&self, x: IBox, jac: Option<[GeoIv; 4]>) -> ((Verdict, Option<IBox>), Option<[GeoIv; 4]>) {
         let mid = [x[0].mid(), x[1].mid()];
         if !(mid[0].is_finite() && mid[1].is_finite()) {
-            return (Verdict::Undecided(x), None);
+            return ((Verdict::Undecided(x), None), None);
         }
         let xm = [point(mid[0]), point(mid[1])];
         // The arithmetic of K in GeoIv: inari's endpoints without its
         // rounding-mode switch per operation.
         let fx = self.value(xm).map(GeoIv::of);
-        let j = self.jac.each_ref().map(|p| GeoIv::of(Self::eval(p, x)));
+        let j = jac.unwrap_or_else(|| self.jac.each_ref().map(|p| GeoIv::of(Self::eval(p, x))));
         let jm = self.jac_mid.each_ref().map(|p| P::mid_value(p, mid[0], mid[1]));
         let Some(y) = inverse2(jm) else {
-            return (Verdict::Undecided(x), None);
+            return ((Verdict::Undecided(x), None), Some(j));
         };
         let y = y.map(GeoIv::pt);
         // K = x̃ − Y F(x̃) + (I − Y J) (X − x̃)
@@ -165,7 +175,7 @@ impl<P: Bivariate> System<P> {
         ]
         .map(|c| crate::scalar::interval(c.lower(), c.upper()));
         if k.iter().any(|c| c.is_empty()) {
-            return (Verdict::Undecided(x), None);
+            return ((Verdict::Undecided(x), None), Some(j));
         }
         let verdict = if k[0].interior(x[0]) && k[1].interior(x[1]) {
             Verdict::Unique(k)
@@ -177,7 +187,7 @@ impl<P: Bivariate> System<P> {
                 Verdict::Undecided(meet)
             }
         };
-        (verdict, Some(k))
+        ((verdict, Some(k)), Some(j))
     }
 
     /// Tries to prove that the box `x0` holds exactly one root, by Krawczyk
@@ -195,9 +205,9 @@ impl<P: Bivariate> System<P> {
     pub fn certify_within(&self, x0: IBox, rounds: usize) -> Verdict {
         let mut x = x0.map(|c| inflate(c, 0.1));
         for _ in 0..rounds {
-            let (verdict, raw) = self.step(x);
+            let ((verdict, raw), jac) = self.step_jac(x, None);
             match verdict {
-                Verdict::Unique(k) => return Verdict::Unique(self.contract(k)),
+                Verdict::Unique(k) => return Verdict::Unique(self.contract(k, jac)),
                 Verdict::NoRoot => return Verdict::NoRoot,
                 Verdict::Undecided(meet) => {
                     // Grow around the hull of K(X) and the original box,
@@ -226,12 +236,17 @@ impl<P: Bivariate> System<P> {
     /// Narrows the enclosure `k` of the one root of a box `x ⊃ k`: first by
     /// [`System::newton_jump`], else by Krawczyk steps until they stop
     /// halving the width.
-    fn contract(&self, mut k: IBox) -> IBox {
-        if let Some(b) = self.newton_jump(k) {
+    ///
+    /// `jac` encloses the Jacobian over a box containing `k` (see
+    /// [`System::step`]).
+    fn contract(&self, mut k: IBox, jac: Option<[GeoIv; 4]>) -> IBox {
+        if let Some(b) = self.newton_jump(k, jac) {
             return b;
         }
+        // The fallback iterates with fresh Jacobians: its quadratic
+        // convergence needs them.
         for _ in 0..8 {
-            match self.krawczyk(k) {
+            match self.step(k, None).0 {
                 Verdict::Unique(next) if width(next) < width(k) => {
                     // Quadratic convergence halves the width many times over
                     // per step; a step that does not halve it has reached
@@ -258,7 +273,7 @@ impl<P: Bivariate> System<P> {
     /// evaluations where the interval iteration from `k` (about `1e-4` wide
     /// after a probe) needs three Krawczyk steps. `None` (the caller iterates
     /// Krawczyk instead) when Newton leaves `k` or `B` is not proven.
-    fn newton_jump(&self, k: IBox) -> Option<IBox> {
+    fn newton_jump(&self, k: IBox, jac: Option<[GeoIv; 4]>) -> Option<IBox> {
         let mut x = [k[0].mid(), k[1].mid()];
         for _ in 0..4 {
             let f = self.value_mid.each_ref().map(|p| P::mid_value(p, x[0], x[1]));
@@ -270,7 +285,11 @@ impl<P: Bivariate> System<P> {
                 return None;
             }
             // Converged to rounding: a further step moves by ulps at most.
-            if dx.iter().zip(&x).all(|(d, c)| d.abs() <= 4.0 * f64::EPSILON * c.abs().max(1.0)) {
+            if dx
+                .iter()
+                .zip(&x)
+                .all(|(d, c)| d.abs() <= 4.0 * f64::EPSILON * c.abs().max(1.0))
+            {
                 break;
             }
         }
@@ -284,7 +303,7 @@ impl<P: Bivariate> System<P> {
             if !(b[0].subset(k[0]) && b[1].subset(k[1])) {
                 return None;
             }
-            if let Verdict::Unique(kb) = self.krawczyk(b) {
+            if let Verdict::Unique(kb) = self.step(b, jac).0 {
                 return Some(kb);
             }
         }
@@ -368,9 +387,11 @@ mod tests {
         let sys = system("(2*u - 1)*(4*u - 3)", "v - 1/4");
         // k around u = 0.75 … 0.8: Newton from 0.775 goes to 0.75, inside.
         let k = [interval(0.74, 0.81), interval(0.2, 0.3)];
-        let b = sys.newton_jump(k).expect("root 0.75 inside k");
+        let b = sys.newton_jump(k, None).expect("root 0.75 inside k");
         assert!(b[0].contains(0.75) && b[1].contains(0.25));
         // k = [0.6, 0.7] holds no root; the jump must not report one outside.
-        assert!(sys.newton_jump([interval(0.6, 0.7), interval(0.2, 0.3)]).is_none());
+        assert!(sys
+            .newton_jump([interval(0.6, 0.7), interval(0.2, 0.3)], None)
+            .is_none());
     }
 }
