@@ -28,7 +28,7 @@ pub struct Limits {
     /// No tri-box deeper than this level is processed.
     pub max_depth: usize,
     /// At most this many tri-boxes are computed from the exact rational
-    /// input ([`EXACT_BELOW`]); later ones use the interval kernel (sound,
+    /// input ([`EXACT_BELOW`]); later ones use compensated balls (sound,
     /// only noisier). Rational coefficients grow with the input's and the
     /// vertices' sizes, so near a degenerate (triple) root an unbounded
     /// exact phase can take minutes.
@@ -120,11 +120,12 @@ pub enum Precision {
     Exact,
 }
 
-/// Below this diameter a stalled tri-box is recomputed from the exact input:
-/// the interval coefficients carry ~1e-16 absolute rounding from the root
-/// triangle's scale, which near a tangential intersection (small angle θ)
-/// limits clipping to ~1e-16/θ; exact coefficients enclosed afresh carry
-/// rounding relative to their own (tiny) size.
+/// Below this diameter a stalled tri-box is recomputed more precisely
+/// ([`Precision`]: float, then compensated, then exact): float balls carry
+/// ~1e-16 absolute rounding from the root triangle's scale, which near a
+/// tangential intersection (small angle θ) limits clipping to ~1e-16/θ;
+/// compensated balls carry a few ulps of their own (tiny) coefficients plus
+/// ~1e-30 of the root's, exact ones only their final rounding.
 pub const EXACT_BELOW: f64 = 1e-6;
 
 /// Rounding noise (the ball's diameter) above [`NOISE_RATIO`] of the largest

@@ -20,7 +20,7 @@
 //! So `min_R ℓ = min` over the *feasible* candidates of these kinds.
 //!
 //! # Rigor
-//! With the interval kernel every candidate is an enclosure of the exact
+//! With a rigorous kernel ([`GeoIv`](super::num::GeoIv)) every candidate is an enclosure of the exact
 //! candidate of the exact constraint curves, feasibility is tested as
 //! "possibly feasible", and the bound is the lower end of the enclosures, so
 //! `u_min` is a rigorous lower bound. Where an enclosure cannot be bounded

@@ -1,9 +1,13 @@
 //! The certified solver: every root of `f(u, v) = g(u, v) = 0` over the unit
 //! triangle or the unit square.
 //!
-//! Floating point proposes; only interval arithmetic discards or certifies:
-//! * the BB coefficients on every tri-box are interval enclosures computed from
-//!   the input for exactly the reported (`f64`) vertices ([`tribox`]);
+//! Floating point proposes; only rigorous arithmetic discards or certifies:
+//! * the BB coefficients on every tri-box are ball polynomials
+//!   ([`TriBall`](crate::poly::TriBall): float coefficients and one rigorous
+//!   radius, from a-priori bounds of the float work) computed from the input
+//!   for exactly the reported (`f64`) vertices ([`tribox`]); where rounding
+//!   would limit a small tri-box, in compensated (double-double) arithmetic
+//!   or exactly from the rational input ([`driver::Precision`]);
 //! * fat-curve widths are rigorous upper bounds, clip bounds are minima over
 //!   enclosed critical points ([`fatcurve`]), check-sign needs every
 //!   coefficient interval strictly on one side of 0 ([`driver`]);
