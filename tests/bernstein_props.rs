@@ -473,7 +473,7 @@ proptest! {
         }
         let e = f.elevate(m + up.0, n + up.1).unwrap();
         encloses_all(fi.elevate(m + up.0, n + up.1).unwrap().coeffs(), e.coeffs(), 1e-12 * big)?;
-        for (ti, tq) in fi.to_triangles().iter().zip(f.to_triangles().iter()) {
+        for (ti, tq) in fi.to_triangles().unwrap().iter().zip(f.to_triangles().unwrap().iter()) {
             encloses_all(ti.coeffs(), tq.coeffs(), 1e-12 * big)?;
         }
         let (k, l) = (kl.0.min(m), kl.1.min(n));
@@ -946,7 +946,7 @@ proptest! {
 
     #[test]
     fn tensor_to_triangles_is_exact(f in tensor_poly(4, false), (s, t) in point()) {
-        let [t0, t1] = f.to_triangles();
+        let [t0, t1] = f.to_triangles().unwrap();
         let (m, n) = f.degree();
         prop_assert_eq!((t0.degree(), t1.degree()), (m + n, m + n));
         let (du, dv) = f.domain();

@@ -106,6 +106,15 @@ impl<S: Scalar> TensorBezier<S> {
         (&self.u_domain, &self.v_domain)
     }
 
+    /// The same rectangle with every coefficient replaced by `f` of it (for
+    /// scaling an equation; [`TensorBezier::map`] converts the domain too).
+    pub fn map_coeffs(&self, f: impl Fn(&S) -> S) -> Self {
+        TensorBezier {
+            coeffs: self.coeffs.iter().map(f).collect(),
+            ..self.clone()
+        }
+    }
+
     /// The same polynomial in another kernel.
     pub fn map<T: Scalar>(&self, f: impl Fn(&S) -> T) -> TensorBezier<T> {
         TensorBezier {
@@ -285,17 +294,16 @@ impl<S: Scalar> TensorBezier<S> {
     ///
     /// Formula: `B^m_i(s) B^n_j(t)` with `1 − s = t + w`, `1 − t = s + w`
     /// expands to `Σ_{a,b} C(m,i)C(n,j)C(m−i,a)C(n−j,b)/C(m+n; i+b, j+a, ·) B^{m+n}_{i+b, j+a}`.
-    /// Exact in rationals; an enclosure with intervals.
-    pub fn to_triangles(&self) -> [TriBezier<S>; 2] {
+    /// Exact in rationals; an enclosure with intervals. Errors
+    /// ([`Error::NonFinite`]) when a float or interval coefficient overflows
+    /// (coefficients near the `f64` range).
+    pub fn to_triangles(&self) -> Result<[TriBezier<S>; 2]> {
         let (m, n) = (self.m, self.n);
         let mat = S::cached_matrix(MatrixKey::TensorToTri(m, n), || tensor_to_tri_exact(m, n));
         let reflected: Vec<S> = self.coeffs.iter().rev().cloned().collect();
         let first = mat_vec(&mat, &self.coeffs, tri_len(m + n));
         let second = mat_vec(&mat, &reflected, tri_len(m + n));
-        [
-            TriBezier::new(m + n, first).expect("conversion keeps finiteness"),
-            TriBezier::new(m + n, second).expect("conversion keeps finiteness"),
-        ]
+        Ok([TriBezier::new(m + n, first)?, TriBezier::new(m + n, second)?])
     }
 
     /// `true` if the (local) point `(s, t)` lies where [`Self::to_triangles`]

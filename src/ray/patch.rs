@@ -381,7 +381,10 @@ impl TensorPatch {
     /// control points): the first covers `u + v ≤ 1` with `(u, v)` as its
     /// parameters, the second `u + v ≥ 1` with parameters `(1 − u, 1 − v)`.
     pub fn to_triangles(&self) -> Result<[TriPatch; 2]> {
-        let halves = self.net.c.clone().map(|p| p.to_triangles());
+        let mut halves = Vec::with_capacity(4);
+        for p in &self.net.c {
+            halves.push(p.to_triangles()?);
+        }
         let n = self.degree.0 + self.degree.1;
         let make = |h: usize| -> Result<TriPatch> {
             let w: Vec<f64> = halves[3][h].coeffs().to_vec();

@@ -330,6 +330,30 @@ impl Frame {
     }
 }
 
+/// Beyond this power of two (either way) an exact equation's BB coefficients
+/// are scaled towards 1 before they are enclosed in floats.
+const EXTREME_LOG2: i64 = 256;
+
+/// Multiplication by the power of two that brings the largest of `coeffs`
+/// near 1, when that lies beyond `2^±EXTREME_LOG2` (the identity otherwise,
+/// and for all-zero input). Scaling an equation by a positive constant does
+/// not move its roots; without it, BB coefficients near the `f64` range
+/// overflow in the conversions (an input scaled by 1e300 is still a valid
+/// system), and tiny ones lose their low bits to underflow.
+fn scaler(coeffs: &[BigRational]) -> impl Fn(&BigRational) -> BigRational {
+    use num_traits::{One, Zero};
+    // floor(log2 |q|) within one.
+    let log2 = |q: &BigRational| q.numer().bits() as i64 - q.denom().bits() as i64;
+    let top = coeffs.iter().filter(|c| !c.is_zero()).map(log2).max().unwrap_or(0);
+    let e = if top.abs() > EXTREME_LOG2 { -top } else { 0 };
+    let factor = num_bigint::BigInt::one() << e.unsigned_abs();
+    move |q: &BigRational| match e.cmp(&0) {
+        std::cmp::Ordering::Equal => q.clone(),
+        std::cmp::Ordering::Greater => q * &factor,
+        std::cmp::Ordering::Less => q / &factor,
+    }
+}
+
 /// Solves exact polynomials (e.g. from [`parse_polynomial`](crate::parse_polynomial))
 /// over `domain`. Errors: an identically zero equation or a common factor
 /// ([`Error::Degenerate`]; a curve of roots cannot be listed), bad options.
@@ -363,6 +387,7 @@ pub fn solve(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions
             check_options(opts)?;
             let n = f.total_degree().max(1).max(g.total_degree()) as usize;
             let (ef, eg) = (f.to_triangle(n), g.to_triangle(n));
+            let (ef, eg) = (ef.map(scaler(ef.coeffs())), eg.map(scaler(eg.coeffs())));
             let (tf, tg) = (ef.map(enclose), eg.map(enclose));
             check_system(&tf, &tg)?;
             let global = System::new(tf.clone(), tg.clone());
@@ -389,6 +414,7 @@ pub fn solve(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions
             let ((m, n), (p, q)) = (f.degrees(), g.degrees());
             let (dm, dn) = (m.max(p) as usize, n.max(q) as usize);
             let (ef, eg) = (f.to_square().elevate(dm, dn)?, g.to_square().elevate(dm, dn)?);
+            let (ef, eg) = (ef.map_coeffs(scaler(ef.coeffs())), eg.map_coeffs(scaler(eg.coeffs())));
             let sys = settle::ExactSystem::new(
                 settle::Shape::Tensor(dm, dn),
                 ef.coeffs().to_vec(),
@@ -415,7 +441,7 @@ pub fn solve(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions
                 // when they are as thin as the gap): the triangle route's fat
                 // curves and exact restarts handle those.
             }
-            let exact = Some((ef.to_triangles(), eg.to_triangles()));
+            let exact = Some((ef.to_triangles()?, eg.to_triangles()?));
             Ok(finish_exact(
                 square_pieces(&ef.map(enclose), &eg.map(enclose), exact, opts)?,
                 &sys,
@@ -634,8 +660,8 @@ fn square_pieces(
     exact: Option<ExactHalves>,
     opts: &SolveOptions,
 ) -> Result<Solution> {
-    let [fa, fb] = f.to_triangles();
-    let [ga, gb] = g.to_triangles();
+    let [fa, fb] = f.to_triangles()?;
+    let [ga, gb] = g.to_triangles()?;
     check_system(&fa, &ga)?;
     let global = System::new(fa.clone(), ga.clone());
     let (ea, eb) = match exact {
