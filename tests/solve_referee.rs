@@ -568,3 +568,38 @@ fn extreme_scales_are_solved() {
         }
     }
 }
+
+/// Referee round 7 (ball arithmetic), two regressions against the interval
+/// version, both fixed:
+/// * two simple roots 2.9e-10 apart (nearly tangent circles): a stalled
+///   tri-box holding both, computed exactly, stopped at the float-precision
+///   singular floor (1e-9) instead of being split; both must be certified;
+/// * a sparse system whose terms span 1e-30..1e80: on the triangle left after
+///   the vanishing edge u = 0 is cut, `g`'s coefficients are all positive but
+///   ~1e-37, below one ball radius sized for the largest; they must be
+///   proven one by one (exact recomputation), not split 50,000 times.
+#[test]
+fn referee_round7_regressions() {
+    let p = |s: &str| parse_polynomial(s).unwrap();
+    let (f, g) = (
+        p("v^2 + u^2 - 71/35*v - 2/15*u + 10399/11025"),
+        p("v^2 + u^2 - 35200000000000000007/56000000000000000000*v - 2/15*u - 6410239999999999995564799999999999999559/112896000000000000000000000000000000000000"),
+    );
+    let sol = solve(&f, &g, Domain::Triangle, &SolveOptions::default()).unwrap();
+    assert!(
+        sol.complete && sol.clusters.is_empty() && sol.roots.len() == 2,
+        "{sol:?}"
+    );
+    let (f, g) = (
+        p("5/7*v^4 + u*v^3 + 1/600000000000000000000000000000*u^2*v^2 - 700000000000000000012000000000000000000060000000000000000001180000000000000000077/21*u^3*v + 1/3500000000000000000000000000000*u^4 + 3/7*u*v^2 - 1/5000000000000000000000000000000*u^2*v + 1/3*u^3 + 2/7*u*v + 1/175000000000000000000000000000"),
+        p("-2*u*v^3 - 2/3*u^2*v^2 + 3/2*u^3*v + 4199999999999999999944000000000000000000119999999999999999992020000000000000000049/42*u^4 + 2/5*v^3 + 3/2*u^3 + 3/7*v^2 - 5/7*u^2 + 4/3*u - 1"),
+    );
+    for method in Method::ALL {
+        let opts = SolveOptions {
+            method,
+            ..SolveOptions::default()
+        };
+        let sol = solve(&f, &g, Domain::Triangle, &opts).unwrap();
+        assert!(sol.complete && sol.stats.run.boxes < 100, "{method}: {:?}", sol.stats);
+    }
+}

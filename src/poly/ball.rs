@@ -75,6 +75,12 @@ pub struct TriBall {
     degree: usize,
     mid: Coeffs,
     rad: f64,
+    /// A strict sign of the enclosed polynomial proven coefficient by
+    /// coefficient when the ball was built from per-coefficient enclosures
+    /// ([`TriBall::enclose`]): the one radius, sized for the largest
+    /// coefficient, can hide the sign of tiny ones that a per-coefficient
+    /// enclosure still proves (a sparse polynomial far from its zeros).
+    sign: Option<Sign>,
 }
 
 /// The approximant of [`TriBall::reduce`] and its rigorous distance bound.
@@ -108,21 +114,23 @@ impl TriBall {
             degree,
             mid: mid.iter().copied().collect(),
             rad,
+            sign: None,
         })
     }
 
     /// A ball from parts already checked by the caller.
     fn new_raw(degree: usize, mid: Coeffs, rad: f64) -> Self {
-        Self { degree, mid, rad }
+        Self {
+            degree,
+            mid,
+            rad,
+            sign: None,
+        }
     }
 
     /// The float polynomial `p` itself (radius 0).
     pub fn from_points(p: &TriBezier<f64>) -> Self {
-        Self {
-            degree: p.degree(),
-            mid: p.coeffs().iter().copied().collect(),
-            rad: 0.0,
-        }
+        Self::new_raw(p.degree(), p.coeffs().iter().copied().collect(), 0.0)
     }
 
     /// The smallest ball around the interval midpoints that contains every
@@ -142,10 +150,19 @@ impl TriBall {
             }
             mid.push(m);
         }
+        let coeffs = p.coeffs();
+        let sign = if coeffs.iter().all(|c| c.inf() > 0.0) {
+            Some(Sign::Positive)
+        } else if coeffs.iter().all(|c| c.sup() < 0.0) {
+            Some(Sign::Negative)
+        } else {
+            None
+        };
         Ok(Self {
             degree: p.degree(),
             mid,
             rad,
+            sign,
         })
     }
 
@@ -160,11 +177,7 @@ impl TriBall {
 
     /// The ball that contains every polynomial of degree `n` (radius `∞`).
     pub fn unbounded(n: usize) -> Self {
-        Self {
-            degree: n,
-            mid: std::iter::repeat_n(0.0, tri_len(n)).collect(),
-            rad: f64::INFINITY,
-        }
+        Self::new_raw(n, std::iter::repeat_n(0.0, tri_len(n)).collect(), f64::INFINITY)
     }
 
     /// The total degree `n`.
@@ -216,6 +229,9 @@ impl TriBall {
     /// comparisons are exact, so the answer is a proof: the polynomial has
     /// that sign on the whole triangle.
     pub fn strict_sign(&self) -> Option<Sign> {
+        if self.sign.is_some() {
+            return self.sign;
+        }
         let r = self.rad;
         if self.mid.iter().all(|&m| m > r) {
             Some(Sign::Positive)
@@ -224,6 +240,13 @@ impl TriBall {
         } else {
             None
         }
+    }
+
+    /// The midpoints share a strict sign that the radius hides (some
+    /// `|m| ≤ r`): a more precise computation of the same polynomial may
+    /// prove it ([`TriBall::strict_sign`] is `None` here).
+    pub fn sign_hidden(&self) -> bool {
+        self.strict_sign().is_none() && (self.mid.iter().all(|&m| m > 0.0) || self.mid.iter().all(|&m| m < 0.0))
     }
 
     /// Every coefficient's range contains 0 (`|m| ≤ r` for all, or a NaN):
@@ -255,6 +278,8 @@ impl TriBall {
             degree: self.degree,
             mid,
             rad,
+            // A positive factor keeps every sign.
+            sign: self.sign,
         }
     }
 
@@ -757,7 +782,7 @@ fn blossom_dd(c_hi: &[f64], c_lo: &[f64], n: usize, p: &[DdPoint; 3], out_hi: &m
 /// A ball from computed midpoints and radius: unbounded if anything overflowed.
 fn finish(degree: usize, mid: Coeffs, rad: f64) -> TriBall {
     if rad.is_finite() && mid.iter().all(|m| m.is_finite()) {
-        TriBall { degree, mid, rad }
+        TriBall::new_raw(degree, mid, rad)
     } else {
         TriBall::unbounded(degree)
     }

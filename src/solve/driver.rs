@@ -523,6 +523,33 @@ fn finer(cx: &Ctx, precision: Precision, diam: f64) -> Option<Precision> {
     }
 }
 
+/// A polynomial whose coefficients all share a strict sign that its ball's
+/// radius hides (some within rounding of 0): a more precise computation can
+/// exclude the tri-box, and exact coefficients prove their signs one by one
+/// whatever their sizes (a sparse system whose small terms are far below the
+/// rounding of its large ones).
+fn sign_hidden(p: &TriBall) -> bool {
+    p.sign_hidden()
+}
+
+/// Below this diameter a stalled, undecided tri-box is not split further
+/// ([`SINGULAR_FLOOR`] for float coefficients; compensated and exact
+/// coefficients resolve far closer to a multiple root, and two simple roots
+/// 1e-10 apart must still be separated by splitting).
+fn singular_floor(precision: Precision) -> f64 {
+    match precision {
+        Precision::Float => SINGULAR_FLOOR,
+        Precision::Compensated | Precision::Exact => SINGULAR_FLOOR_PRECISE,
+    }
+}
+
+/// [`singular_floor`] for compensated and exact coefficients: their noise is
+/// a few ulps of the tri-box's own coefficients (plus ~1e-30 of the root's),
+/// so near a double root (coefficients ~h² at diameter h) the sign of the
+/// separating combination is resolvable to h ~ 1e-15; this stays clear of
+/// the float grid of the vertices.
+pub const SINGULAR_FLOOR_PRECISE: f64 = 1e-13;
+
 fn step<G: Geo>(cx: &mut Ctx, mut item: Leaf, stack: &mut Vec<Leaf>, probe: &mut dyn FnMut(&TriBox) -> Probe) {
     let limits = cx.limits;
     let level = cx.out.nodes[item.node].level + 1;
@@ -530,8 +557,11 @@ fn step<G: Geo>(cx: &mut Ctx, mut item: Leaf, stack: &mut Vec<Leaf>, probe: &mut
     // The coefficients are noisy relative to their values: recompute more
     // precisely before the clip is spoiled by rounding (same tri-box, same
     // level), as long as a finer precision helps.
-    while G::RIGOROUS && (noisy(&item.fa) || noisy(&item.fb)) {
-        let Some(next) = finer(cx, item.precision, diam) else {
+    while G::RIGOROUS && (noisy(&item.fa) || noisy(&item.fb) || sign_hidden(&item.fa) || sign_hidden(&item.fb)) {
+        // A hidden sign may be proven exactly at any size (within the exact
+        // budget); noise only matters on small tri-boxes.
+        let hidden = sign_hidden(&item.fa) || sign_hidden(&item.fb);
+        let Some(next) = finer(cx, item.precision, if hidden { 0.0 } else { diam }) else {
             break;
         };
         if next == Precision::Exact {
@@ -664,7 +694,7 @@ fn step<G: Geo>(cx: &mut Ctx, mut item: Leaf, stack: &mut Vec<Leaf>, probe: &mut
                     return;
                 }
                 Combination::Lost => true,
-                Combination::Open => new_diam < SINGULAR_FLOOR,
+                Combination::Open => new_diam < singular_floor(next.precision),
             }
         }
         Probe::Undecided => false,
