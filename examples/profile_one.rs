@@ -1,39 +1,29 @@
-//! One workload in a loop, for profilers: the certified hc solve of Example 1
-//! (`profile_one N`), or the counters of both kernels (`profile_one stats`).
+//! One workload in a loop, for profilers and A/B timings:
+//! `profile_one [MODE][N] [EXAMPLE]` runs the hc solve of a paper example
+//! (default `1`) N times (default 200): MODE empty is the certified solve
+//! with default options, `noprobe` the certified solve without Krawczyk
+//! probes, `plain` the same iteration in plain `f64`;
+//! `profile_one stats [EXAMPLE]` prints the counters of the certified and
+//! plain iterations.
 use inari::Interval;
 use rootclip::poly::TriBall;
-use rootclip::solve::driver::{self, Limits, Probe};
+use rootclip::solve::driver::{self, Exact, Limits, Probe};
 use rootclip::solve::num::GeoIv;
-use rootclip::solve::{solve_triangle, Method, SolveOptions, SplitRule};
-use rootclip::{parse_polynomial, Scalar};
+use rootclip::solve::{solve_triangle, solve_triangle_f64, Method, SolveOptions, SplitRule};
+use rootclip::{repro, Scalar, TriBezier};
+
 fn main() {
-    let arg = std::env::args().nth(1).unwrap_or_default();
-    let f = parse_polynomial("u^3 - v")
+    let args: Vec<String> = std::env::args().collect();
+    let arg = args.get(1).cloned().unwrap_or_default();
+    let name = args.get(2).map_or("1", String::as_str);
+    let ex = repro::examples()
         .unwrap()
-        .to_triangle(3)
-        .map(Interval::from_rational);
-    let g = parse_polynomial("u^3 + v - 1/4")
-        .unwrap()
-        .to_triangle(3)
-        .map(Interval::from_rational);
-    if arg == "f64" {
-        for ex in rootclip::repro::examples().unwrap() {
-            let n = ex.f.total_degree().max(ex.g.total_degree()) as usize;
-            let (ff, gf) = (
-                ex.f.to_triangle(n).map(f64::from_rational),
-                ex.g.to_triangle(n).map(f64::from_rational),
-            );
-            for m in Method::ALL {
-                let o = SolveOptions {
-                    method: m,
-                    ..SolveOptions::default()
-                };
-                let pts = rootclip::solve::solve_triangle_f64(&ff, &gf, &o);
-                println!("example {} {m}: {} leaves {:?}", ex.name, pts.len(), pts.first());
-            }
-        }
-        return;
-    }
+        .into_iter()
+        .find(|e| e.name == name)
+        .expect("a paper example: 1, 2, 3k0, 3k2, 3k5");
+    let n = ex.f.total_degree().max(ex.g.total_degree()).max(1) as usize;
+    let f: TriBezier<Interval> = ex.f.to_triangle(n).map(Interval::from_rational);
+    let g: TriBezier<Interval> = ex.g.to_triangle(n).map(Interval::from_rational);
     if arg == "stats" {
         let limits = Limits {
             method: Method::Hc,
@@ -46,10 +36,10 @@ fn main() {
             swap_roles: true,
         };
         let (fb, gb) = (TriBall::enclose(&f).unwrap(), TriBall::enclose(&g).unwrap());
-        let ri = driver::run::<GeoIv>(&fb, &gb, driver::Exact::None, &limits, &mut |_| Probe::Undecided);
-        let rf = driver::run::<f64>(&fb, &gb, driver::Exact::None, &limits, &mut |_| Probe::Undecided);
+        let ri = driver::run::<GeoIv>(&fb, &gb, Exact::None, &limits, &mut |_| Probe::Undecided);
+        let rf = driver::run::<f64>(&fb, &gb, Exact::None, &limits, &mut |_| Probe::Undecided);
         println!(
-            "interval: {:?} leaves {}\nf64:      {:?} leaves {}",
+            "certified: {:?} leaves {}\nplain:     {:?} leaves {}",
             ri.counters,
             ri.leaves.len(),
             rf.counters,
@@ -59,19 +49,22 @@ fn main() {
         println!("solve_triangle stats: {:?}", sol.stats);
         return;
     }
-    if let Some(k) = arg.strip_prefix("plain") {
+    let (mode, count) = ["noprobe", "plain", ""]
+        .iter()
+        .find_map(|m| arg.strip_prefix(m).map(|rest| (*m, rest.parse().unwrap_or(200))))
+        .expect("the empty prefix always matches");
+    let opts = SolveOptions {
+        probe: mode.is_empty(),
+        ..SolveOptions::default()
+    };
+    if mode == "plain" {
         let (ff, gf) = (f.map(|x| x.mid()), g.map(|x| x.mid()));
-        let opts = SolveOptions {
-            probe: false,
-            ..SolveOptions::default()
-        };
-        for _ in 0..k.parse().unwrap_or(200) {
-            std::hint::black_box(rootclip::solve::solve_triangle_f64(&ff, &gf, &opts));
+        for _ in 0..count {
+            std::hint::black_box(solve_triangle_f64(&ff, &gf, &opts));
         }
         return;
     }
-    let n: usize = arg.parse().unwrap_or(200);
-    for _ in 0..n {
-        std::hint::black_box(solve_triangle(&f, &g, &SolveOptions::default()).unwrap());
+    for _ in 0..count {
+        std::hint::black_box(solve_triangle(&f, &g, &opts).unwrap());
     }
 }

@@ -203,7 +203,20 @@ impl<P: Bivariate> System<P> {
     /// box during the iteration, where giving up only costs further clips,
     /// while the final certification of a leaf tries hard.
     pub fn certify_within(&self, x0: IBox, rounds: usize) -> Verdict {
-        let mut x = x0.map(|c| inflate(c, 0.1));
+        // A leaf at the iteration's end can be a few ulps wide, below
+        // Krawczyk's rounding floor; start from at least `FLOOR_ULPS` ulps
+        // (any box containing `x0` proves the same), not from rounds of
+        // inflation that each cost a step.
+        let mut x = x0.map(|c| {
+            let x = inflate(c, 0.1);
+            let min = FLOOR_ULPS * f64::EPSILON * c.mag().max(1.0);
+            if x.wid() >= min {
+                x
+            } else {
+                let m = c.mid();
+                crate::scalar::interval((m - 0.5 * min).min(c.inf()), (m + 0.5 * min).max(c.sup()))
+            }
+        });
         for _ in 0..rounds {
             let ((verdict, raw), jac) = self.step_jac(x, None);
             match verdict {
@@ -310,6 +323,11 @@ impl<P: Bivariate> System<P> {
         None
     }
 }
+
+/// The narrowest box side, in ulps of its coordinate (and of 1), that
+/// [`System::certify_within`] starts from: well above the rounding floor of
+/// a well-conditioned root (16 ulps), and still ~2e-13 wide.
+const FLOOR_ULPS: f64 = 1024.0;
 
 /// Each side of `x` is at most 16 ulps of its largest coordinate (and of 1)
 /// wide: Krawczyk's rounding floor for a well-conditioned root.
