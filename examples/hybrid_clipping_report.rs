@@ -336,8 +336,9 @@ clipping without preprocessing `hc-nopre`, hybrid clipping `hc`):\n\
 no Krawczyk probes during the iteration, ε = 1e-14) and the recursion tree is read back: level *i* \
 is the tri-box holding a root after *i* steps (a step is one call of Algorithm 1: a clip, then a \
 1-to-4 split when the split test says so), its diameter is its longest edge, and the count for ε \
-is the first level with diameter < ε, maximum over the roots. Every clip is a proof (interval \
-enclosures, verified covering) and every root box is certified by Krawczyk's operator; the \
+is the first level with diameter < ε, maximum over the roots. Every clip is a proof (ball \
+polynomials with rigorous radii, enclosed critical points, verified covering) and every root box \
+is certified by Krawczyk's operator; the \
 paper's MATLAB implementation proves nothing. Three variants of Algorithm 1 (`repro::Variant`):\n\
 * **ours** (rootclip's default, `Variant::DEFAULT`, `rootclip tables`): the halving split test \
 (`SplitRule::Halving`: split when the clip did not halve the diameter — the prose of §2.3.5, *“if \

@@ -287,9 +287,11 @@ fn crossing_angle(ex: &Example, p: [f64; 2]) -> f64 {
 pub(super) fn explain_rigor(ctx: &Ctx, s: &mut String) -> Res<()> {
     s.push_str(
         "### 3. Rigor: the floor of certified diameters\n\nEvery clip here is a proof: the BB \
-coefficients on a tri-box are interval enclosures for exactly its `f64` vertices, clip bounds \
-are lower ends of enclosures, and a clipped triangle is pushed out a few ulps until its covering \
-is proven. Diameters cannot go below ~1e-15, and our last tri-boxes are a few 1e-15 wide. The \
+coefficients on a tri-box are ball polynomials (float coefficients and one rigorous radius, \
+`poly::TriBall`) computed for exactly its `f64` vertices, fat-curve widths are rigorous bounds, \
+clip bounds are lower ends of enclosures of the critical points, and a clipped triangle is pushed \
+out a few ulps until its covering is proven. Diameters cannot go below ~1e-15 (the float grid of \
+the vertices), and our last tri-boxes are a few 1e-15 wide. The \
 paper's last diameters below 1e-15 are of the order of one ulp of the root's coordinates — \
 triangles whose vertices are adjacent floats, which no computation can certify:\n\n\
 | system | method | paper's last diameter | ulp(u), ulp(v) at the root | our last diameter |\n|---|---|---:|---:|---:|\n",
@@ -324,27 +326,31 @@ triangles whose vertices are adjacent floats, which no computation can certify:\
         s,
         "\nNear a tangential intersection the rounding of the coefficients (~1e-16 absolute, \
 inherited from the root triangle's scale) is amplified by 1/θ, θ the angle between the curves. \
-In Example 3 with k = 5 the curves cross at θ = {theta:.2e} rad, so the interval noise floor is \
-~1e-16/θ ≈ {floor:.0e}. A stalled tri-box below `EXACT_BELOW` = 1e-6 (or one whose coefficient \
-enclosures are wide relative to their values) is therefore recomputed from the exact rational \
-input, whose enclosures then carry rounding relative to their own tiny size. For `hc` on this \
-system, tracked root:\n\n\
-| input | exact restarts | tri-boxes | levels to 1e-12 | levels to 1e-14 | diameters by level |\n|---|---:|---:|---:|---:|---|\n\
-| exact rational (`solve`) | {xr} | {xb} | {x12} | {x14} | {xp} |\n\
-| enclosed `f64` BB (`solve_triangle`) | {er} | {eb} | {e12} | {e14} | {ep} |\n\n\
-With enclosed input (1/4·(1 + 1e-5) is not a float, so `solve_triangle` has no exact system and \
-cannot restart) the clips stall at the floor and only splits, a factor 2 per level, get below it. \
+In Example 3 with k = 5 the curves cross at θ = {theta:.2e} rad, so the float noise floor is \
+~1e-16/θ ≈ {floor:.0e}. A tri-box whose coefficients are noisy relative to their values (the \
+ball's diameter above 1e-9 of its largest coefficient) is therefore recomputed in compensated \
+(double-double) arithmetic, whose radius is a few ulps of the tri-box's *own* coefficients, and a \
+stalled one below `EXACT_BELOW` = 1e-6 from the exact rational input when there is one. For `hc` \
+on this system, tracked root:\n\n\
+| input | compensated restarts | exact restarts | tri-boxes | levels to 1e-12 | levels to 1e-14 | diameters by level |\n|---|---:|---:|---:|---:|---:|---|\n\
+| exact rational (`solve`) | {xc} | {xr} | {xb} | {x12} | {x14} | {xp} |\n\
+| enclosed `f64` BB (`solve_triangle`) | {ec} | {er} | {eb} | {e12} | {e14} | {ep} |\n\n\
+With enclosed input (1/4·(1 + 1e-5) is not a float, so `solve_triangle` has no exact system, and \
+the compensated coefficients still carry the input's own rounding, one ulp of 1/4) the clips \
+stall at that floor and only splits, a factor 2 per level, get below it. \
 The paper reports {p12} and {p14} levels at −12 and −14, its path ending in {plast} — about one ulp, \
 not a certified box.\n\n",
         p12 = opt(cell(&ctx.halving, "3k5", Method::Hc, -12).and_then(|c| c.paper)),
         p14 = opt(cell(&ctx.halving, "3k5", Method::Hc, -14).and_then(|c| c.paper)),
         plast = opt(paper_diams(ctx, "3k5", Method::Hc).last().map(|&d| sci(d))),
         floor = 1.1e-16 / theta,
+        xc = sol.stats.run.compensated_restarts,
         xr = sol.stats.run.exact_restarts,
         xb = sol.stats.run.boxes,
         x12 = lv(sol, -12),
         x14 = lv(sol, -14),
         xp = path(sol),
+        ec = enclosed.stats.run.compensated_restarts,
         er = enclosed.stats.run.exact_restarts,
         eb = enclosed.stats.run.boxes,
         e12 = lv(&enclosed, -12),
