@@ -580,6 +580,15 @@ fn step<G: Geo>(cx: &mut Ctx, mut item: Leaf, stack: &mut Vec<Leaf>, probe: &mut
             ..item
         };
     }
+    // Every root is a root of any combination w_f f + w_g g: one that is
+    // one-signed on the tri-box excludes it for the price of two jets and a
+    // combination, before the (far costlier) clip. The combination closest to
+    // vanishing at the centre varies least over the tri-box, so it is the
+    // likeliest to keep one sign where the curves pass without meeting.
+    if separating_combination(&item.fa, &item.fb) == Combination::NoRoot {
+        cx.out.counters.sign_exclusions += 1;
+        return;
+    }
     let incenter = item.tb.incenter_bary();
     let mut bounds = clip_bounds::<G>(limits.method, &item.fa, &item.fb, incenter);
     if limits.swap_roles && matches!(limits.method, Method::Hc | Method::HcNoPre) {
