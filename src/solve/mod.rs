@@ -806,11 +806,14 @@ fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &Solv
     }
 }
 
-/// Groups of boxes connected by overlap (closed boxes; touching counts), by a
-/// sweep over `u` and union–find: `O(n log n + overlaps)`.
-fn group_overlapping(mut items: Vec<Found>) -> Vec<Vec<Found>> {
-    items.sort_by(|a, b| a.bx[0].inf().total_cmp(&b.bx[0].inf()));
+/// Groups of boxes connected by overlap (closed boxes; touching counts), by
+/// union–find over the pairs that [`touching_pairs`] finds.
+fn group_overlapping(items: Vec<Found>) -> Vec<Vec<Found>> {
     let n = items.len();
+    let rects: Vec<[f64; 4]> = items
+        .iter()
+        .map(|f| [f.bx[0].inf(), f.bx[0].sup(), f.bx[1].inf(), f.bx[1].sup()])
+        .collect();
     let mut parent: Vec<usize> = (0..n).collect();
     fn find(p: &mut [usize], mut i: usize) -> usize {
         while p[i] != i {
@@ -819,17 +822,10 @@ fn group_overlapping(mut items: Vec<Found>) -> Vec<Vec<Found>> {
         }
         i
     }
-    for i in 0..n {
-        for j in i + 1..n {
-            if items[j].bx[0].inf() > items[i].bx[0].sup() {
-                break;
-            }
-            if overlaps(items[i].bx, items[j].bx) {
-                let (a, b) = (find(&mut parent, i), find(&mut parent, j));
-                parent[a] = b;
-            }
-        }
-    }
+    touching_pairs(&rects, |i, j| {
+        let (a, b) = (find(&mut parent, i), find(&mut parent, j));
+        parent[a] = b;
+    });
     let mut groups: Vec<Vec<Found>> = Vec::new();
     let mut slot = vec![usize::MAX; n];
     for (i, item) in items.into_iter().enumerate() {
@@ -841,6 +837,53 @@ fn group_overlapping(mut items: Vec<Found>) -> Vec<Vec<Found>> {
         groups[slot[r]].push(item);
     }
     groups
+}
+
+/// Calls `found(i, j)` for every pair of closed rectangles `[u_lo, u_hi, v_lo,
+/// v_hi]` that share a point (some pairs may be reported twice). Leaves are
+/// many and similar in size, often strung along one coordinate (a sliver of
+/// near-roots along an edge), where a sweep over `u` compares all pairs: so
+/// they are hashed into a grid of cells the size of the median rectangle, and
+/// only rectangles sharing a cell are compared (rectangles much larger than a
+/// cell are compared with every other). Small inputs compare all pairs.
+fn touching_pairs(rects: &[[f64; 4]], mut found: impl FnMut(usize, usize)) {
+    let touch = |a: &[f64; 4], b: &[f64; 4]| a[0] <= b[1] && b[0] <= a[1] && a[2] <= b[3] && b[2] <= a[3];
+    let n = rects.len();
+    let mut sizes: Vec<f64> = rects.iter().map(|r| (r[1] - r[0]).max(r[3] - r[2])).collect();
+    sizes.sort_by(f64::total_cmp);
+    let cell = sizes.get(n / 2).copied().unwrap_or(0.0);
+    let usable = n > 64 && cell > 0.0 && cell.is_finite();
+    let key = |x: f64| (x / cell).floor() as i64;
+    // Rectangles spanning more than 8 cells either way (or not finite).
+    let big = |r: &[f64; 4]| !usable || !r.iter().all(|x| x.is_finite()) || (r[1] - r[0]).max(r[3] - r[2]) > 8.0 * cell;
+    let (mut large, mut grid) = (Vec::new(), std::collections::HashMap::<(i64, i64), Vec<usize>>::new());
+    for (i, r) in rects.iter().enumerate() {
+        if big(r) {
+            large.push(i);
+            continue;
+        }
+        for a in key(r[0])..=key(r[1]) {
+            for b in key(r[2])..=key(r[3]) {
+                grid.entry((a, b)).or_default().push(i);
+            }
+        }
+    }
+    for members in grid.values() {
+        for (k, &i) in members.iter().enumerate() {
+            for &j in &members[k + 1..] {
+                if touch(&rects[i], &rects[j]) {
+                    found(i, j);
+                }
+            }
+        }
+    }
+    for &i in &large {
+        for j in 0..n {
+            if j != i && touch(&rects[i], &rects[j]) {
+                found(i, j);
+            }
+        }
+    }
 }
 
 /// Undecided regions within this distance of each other (their joint hull at
@@ -1163,6 +1206,54 @@ mod tests {
         Found {
             bx: [interval(u, u + w), interval(v, v + w)],
             diameters: vec![w],
+        }
+    }
+
+    /// The grid pairing finds exactly the touching pairs brute force finds:
+    /// random rectangles of mixed sizes, rectangles sharing only an edge or a
+    /// corner, zero-width ones, a few huge ones and thousands strung along
+    /// one line.
+    #[test]
+    fn touching_pairs_match_brute_force() {
+        let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+        let mut rnd = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for case in 0..6 {
+            let n = [10, 70, 300, 1000, 2000, 500][case];
+            let mut rects: Vec<[f64; 4]> = (0..n)
+                .map(|k| {
+                    let size = [1e-3, 1e-9, 0.0, 0.3][k % 4] * rnd();
+                    let (u, v) = if case == 4 {
+                        (1e-12 * rnd(), k as f64 * 1e-9)
+                    } else {
+                        (rnd(), rnd())
+                    };
+                    [u, u + size, v, v + size * rnd()]
+                })
+                .collect();
+            // Exact edge and corner contacts.
+            let r0 = rects[0];
+            rects.push([r0[1], r0[1] + 0.1, r0[2], r0[3]]);
+            rects.push([r0[1], r0[1] + 0.1, r0[3], r0[3] + 0.1]);
+            rects.push([-1.0, 2.0, 0.5, 0.5]);
+            let mut got = std::collections::BTreeSet::new();
+            touching_pairs(&rects, |i, j| {
+                got.insert((i.min(j), i.max(j)));
+            });
+            let mut want = std::collections::BTreeSet::new();
+            for i in 0..rects.len() {
+                for j in i + 1..rects.len() {
+                    let (a, b) = (rects[i], rects[j]);
+                    if a[0] <= b[1] && b[0] <= a[1] && a[2] <= b[3] && b[2] <= a[3] {
+                        want.insert((i, j));
+                    }
+                }
+            }
+            assert_eq!(got, want, "case {case}");
         }
     }
 
