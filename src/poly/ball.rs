@@ -680,7 +680,24 @@ impl TriBallDD {
     /// where `yl` are the low parts of the results (their exact distance to
     /// the float midpoints `yh`) and `w_l = max |wl|`.
     pub fn subdivide(&self, verts: &[[f64; 2]; 3]) -> TriBall {
-        let n = self.degree;
+        let [one] = Self::subdivide_all([self], verts);
+        one
+    }
+
+    /// [`TriBallDD::subdivide`] of two polynomials of the same degree onto
+    /// the same sub-triangle in one two-lane pass. Panics on different
+    /// degrees (a caller bug).
+    pub fn subdivide_pair(f: &TriBallDD, g: &TriBallDD, verts: &[[f64; 2]; 3]) -> (TriBall, TriBall) {
+        let [a, b] = Self::subdivide_all([f, g], verts);
+        (a, b)
+    }
+
+    fn subdivide_all<const L: usize>(polys: [&TriBallDD; L], verts: &[[f64; 2]; 3]) -> [TriBall; L]
+    where
+        [Dd; L]: Default,
+    {
+        let n = polys[0].degree;
+        assert!(polys.iter().all(|p| p.degree == n), "subdivide_all needs equal degrees");
         let pts = verts.map(DdPoint::new);
         let mut s_max = 0.0f64;
         let mut wl_max = 0.0f64;
@@ -689,93 +706,87 @@ impl TriBallDD {
             wl_max = wl_max.max(p.wl.abs());
         }
         if !s_max.is_finite() {
-            return TriBall::unbounded(n);
+            return polys.map(|_| TriBall::unbounded(n));
         }
         let len = tri_len(n);
-        let (mut out_hi, mut out_lo): (Coeffs, Coeffs) = (
-            std::iter::repeat_n(0.0, len).collect(),
-            std::iter::repeat_n(0.0, len).collect(),
-        );
-        blossom_dd(&self.hi, &self.lo, n, &pts, &mut out_hi, &mut out_lo);
-        let m0 = max_abs(&self.hi) * (1.0 + U);
-        let rad = if n == 0 {
-            self.rad + max_abs(&out_lo)
-        } else {
-            let s_hat = iv::up(s_max);
-            let p = s_hat.powi(n as i32 - 1);
-            let growth = 1.0 + gamma(3 * n);
-            let floor = n as f64 * p * (44.0 * U * U * s_hat + 13.0 * U * wl_max) * m0 * growth;
-            inflate(max_abs(&out_lo) + p * s_hat * self.rad + floor)
-        };
-        finish(n, out_hi, rad)
+        let net: SmallVec<[[Dd; L]; 16]> = (0..len).map(|i| polys.map(|p| Dd { h: p.hi[i], l: p.lo[i] })).collect();
+        let mut out: SmallVec<[[Dd; L]; 16]> = SmallVec::from_elem([Dd::default(); L], len);
+        blossom(&net, n, &pts, &mut out);
+        let s_hat = iv::up(s_max);
+        let p = if n == 0 { 1.0 } else { s_hat.powi(n as i32 - 1) };
+        let growth = 1.0 + gamma(3 * n);
+        let mut lane = 0;
+        polys.map(|poly| {
+            let mid: Coeffs = out.iter().map(|v| v[lane].h).collect();
+            let low = out.iter().fold(0.0f64, |m, v| m.max(v[lane].l.abs()));
+            lane += 1;
+            let rad = if n == 0 {
+                poly.rad + low
+            } else {
+                let m0 = max_abs(&poly.hi) * (1.0 + U);
+                let floor = n as f64 * p * (44.0 * U * U * s_hat + 13.0 * U * wl_max) * m0 * growth;
+                inflate(low + p * s_hat * poly.rad + floor)
+            };
+            finish(n, mid, rad)
+        })
     }
 }
 
-/// One compensated de Casteljau step in place on the net `(hi, lo)` of
-/// degree `m` at `p` (see [`TriBallDD::subdivide`]).
-#[inline]
-fn step_dd(hi: &mut [f64], lo: &mut [f64], m: usize, p: &DdPoint) {
-    let mut out = 0;
-    let mut row = 0;
-    for j in 0..m {
-        let next = row + m + 1 - j;
-        for i in 0..m - j {
-            let (a, b, c) = (row + i + 1, next + i, row + i);
-            let (s1, e1) = two_prod(p.s, hi[a]);
-            let (s2, e2) = two_prod(p.t, hi[b]);
-            let (s3, e3) = two_prod(p.wh, hi[c]);
+/// A double-double value `h + l` (`|l| ≤ u|h|` after renormalization).
+#[derive(Clone, Copy, Debug, Default)]
+struct Dd {
+    h: f64,
+    l: f64,
+}
+
+/// The values one de Casteljau step combines, `L` nets at once: the blossom
+/// ([`blossom`]) is written once for float lanes and for double-double lanes.
+trait Lanes: Copy + Default {
+    /// A vertex in barycentric coordinates, as the point operation wants it.
+    type Point;
+    /// `p_u a + p_v b + p_w c`.
+    fn combine(p: &Self::Point, a: Self, b: Self, c: Self) -> Self;
+}
+
+impl<const L: usize> Lanes for [f64; L]
+where
+    [f64; L]: Default,
+{
+    type Point = [f64; 3];
+    /// Two FMAs over a product (see [`TriBall::subdivide`] for the bound).
+    #[inline(always)]
+    fn combine(p: &[f64; 3], a: Self, b: Self, c: Self) -> Self {
+        let [pu, pv, pw] = *p;
+        let mut y = [0.0; L];
+        for l in 0..L {
+            y[l] = pu.mul_add(a[l], pv.mul_add(b[l], pw * c[l]));
+        }
+        y
+    }
+}
+
+impl<const L: usize> Lanes for [Dd; L]
+where
+    [Dd; L]: Default,
+{
+    type Point = DdPoint;
+    /// The compensated step of [`TriBallDD::subdivide`].
+    #[inline(always)]
+    fn combine(p: &DdPoint, a: Self, b: Self, c: Self) -> Self {
+        let mut y = [Dd::default(); L];
+        for l in 0..L {
+            let (a, b, c) = (a[l], b[l], c[l]);
+            let (s1, e1) = two_prod(p.s, a.h);
+            let (s2, e2) = two_prod(p.t, b.h);
+            let (s3, e3) = two_prod(p.wh, c.h);
             let (h1, r1) = two_sum(s1, s2);
             let (h, r2) = two_sum(h1, s3);
-            let l =
-                p.s.mul_add(lo[a], p.t.mul_add(lo[b], p.wh.mul_add(lo[c], p.wl * hi[c])));
-            let l = l + ((r1 + r2) + (e1 + e2 + e3));
-            let (yh, yl) = two_sum(h, l);
-            hi[out] = yh;
-            lo[out] = yl;
-            out += 1;
+            let low = p.s.mul_add(a.l, p.t.mul_add(b.l, p.wh.mul_add(c.l, p.wl * c.h)));
+            let low = low + ((r1 + r2) + (e1 + e2 + e3));
+            let (yh, yl) = two_sum(h, low);
+            y[l] = Dd { h: yh, l: yl };
         }
-        row = next;
-    }
-}
-
-/// [`blossom`] in compensated arithmetic.
-fn blossom_dd(c_hi: &[f64], c_lo: &[f64], n: usize, p: &[DdPoint; 3], out_hi: &mut [f64], out_lo: &mut [f64]) {
-    let len = tri_len(n);
-    let mut scratch: SmallVec<[f64; 216]> = std::iter::repeat_n(0.0, 6 * len).collect();
-    let (ah, rest) = scratch.split_at_mut(len);
-    let (al, rest) = rest.split_at_mut(len);
-    let (bh, rest) = rest.split_at_mut(len);
-    let (bl, rest) = rest.split_at_mut(len);
-    let (ch, cl) = rest.split_at_mut(len);
-    ah.copy_from_slice(c_hi);
-    al.copy_from_slice(c_lo);
-    for r in 0..=n {
-        if r > 0 {
-            step_dd(ah, al, n - r + 1, &p[0]);
-        }
-        let la = tri_len(n - r);
-        bh[..la].copy_from_slice(&ah[..la]);
-        bl[..la].copy_from_slice(&al[..la]);
-        for s in 0..=n - r {
-            if s > 0 {
-                step_dd(bh, bl, n - r - s + 1, &p[1]);
-            }
-            let d = n - r - s;
-            let idx = tri_index(n, r, s);
-            if d == 0 {
-                out_hi[idx] = bh[0];
-                out_lo[idx] = bl[0];
-            } else {
-                let lb = tri_len(d);
-                ch[..lb].copy_from_slice(&bh[..lb]);
-                cl[..lb].copy_from_slice(&bl[..lb]);
-                for m in (1..=d).rev() {
-                    step_dd(ch, cl, m, &p[2]);
-                }
-                out_hi[idx] = ch[0];
-                out_lo[idx] = cl[0];
-            }
-        }
+        y
     }
 }
 
@@ -807,19 +818,13 @@ fn pow2(e: i32) -> f64 {
 /// (`c' = p_u c_{i+1,j} + p_v c_{i,j+1} + p_w c_ij`, evaluated as two FMAs
 /// over a product).
 #[inline(always)]
-fn step_from<const L: usize>(src: &[[f64; L]], dst: &mut [[f64; L]], m: usize, p: &[f64; 3]) {
-    let [pu, pv, pw] = *p;
+fn step_from<N: Lanes>(src: &[N], dst: &mut [N], m: usize, p: &N::Point) {
     let mut out = 0;
     let mut row = 0;
     for j in 0..m {
         let next = row + m + 1 - j;
         for i in 0..m - j {
-            let (a, b, c) = (src[row + i + 1], src[next + i], src[row + i]);
-            let mut y = [0.0; L];
-            for l in 0..L {
-                y[l] = pu.mul_add(a[l], pv.mul_add(b[l], pw * c[l]));
-            }
-            dst[out] = y;
+            dst[out] = N::combine(p, src[row + i + 1], src[next + i], src[row + i]);
             out += 1;
         }
         row = next;
@@ -829,19 +834,13 @@ fn step_from<const L: usize>(src: &[[f64; L]], dst: &mut [[f64; L]], m: usize, p
 /// [`step_from`] in place: writing in storage order never overwrites an
 /// entry a later output reads (see `triangle::step_with`).
 #[inline(always)]
-fn step<const L: usize>(net: &mut [[f64; L]], m: usize, p: &[f64; 3]) {
-    let [pu, pv, pw] = *p;
+fn step<N: Lanes>(net: &mut [N], m: usize, p: &N::Point) {
     let mut out = 0;
     let mut row = 0;
     for j in 0..m {
         let next = row + m + 1 - j;
         for i in 0..m - j {
-            let (a, b, c) = (net[row + i + 1], net[next + i], net[row + i]);
-            let mut y = [0.0; L];
-            for l in 0..L {
-                y[l] = pu.mul_add(a[l], pv.mul_add(b[l], pw * c[l]));
-            }
-            net[out] = y;
+            net[out] = N::combine(p, net[row + i + 1], net[next + i], net[row + i]);
             out += 1;
         }
         row = next;
@@ -851,7 +850,7 @@ fn step<const L: usize>(net: &mut [[f64; L]], m: usize, p: &[f64; 3]) {
 /// The value at `p` of the `L` nets of degree `d` in `src` (a full pyramid:
 /// the first step out of place into `scratch`, the rest in place).
 #[inline(always)]
-fn pyramid<const L: usize>(src: &[[f64; L]], scratch: &mut [[f64; L]], d: usize, p: &[f64; 3]) -> [f64; L] {
+fn pyramid<N: Lanes>(src: &[N], scratch: &mut [N], d: usize, p: &N::Point) -> N {
     if d == 0 {
         return src[0];
     }
@@ -866,7 +865,7 @@ fn pyramid<const L: usize>(src: &[[f64; L]], scratch: &mut [[f64; L]], d: usize,
 /// `c` (as `triangle::blossom_net`: `i` steps at `P1`, then `j` at `P2`,
 /// then the rest at `P3`). Every first step reads its source out of place,
 /// so no net is ever copied; scratch lives on the stack for small degrees.
-fn blossom<const L: usize>(c: &[[f64; L]], n: usize, p: &[[f64; 3]; 3], out: &mut [[f64; L]]) {
+fn blossom<N: Lanes>(c: &[N], n: usize, p: &[N::Point; 3], out: &mut [N]) {
     // A constant degree lets the compiler unroll the short loops of the
     // common low degrees completely.
     match n {
@@ -879,14 +878,14 @@ fn blossom<const L: usize>(c: &[[f64; L]], n: usize, p: &[[f64; 3]; 3], out: &mu
 }
 
 #[inline(always)]
-fn blossom_n<const L: usize>(c: &[[f64; L]], n: usize, p: &[[f64; 3]; 3], out: &mut [[f64; L]]) {
+fn blossom_n<N: Lanes>(c: &[N], n: usize, p: &[N::Point; 3], out: &mut [N]) {
     let len = tri_len(n);
-    let mut buf: SmallVec<[[f64; L]; 48]> = SmallVec::from_elem([0.0; L], 3 * len);
+    let mut buf: SmallVec<[N; 48]> = SmallVec::from_elem(N::default(), 3 * len);
     let (a, rest) = buf.split_at_mut(len);
     let (b, cc) = rest.split_at_mut(len);
     for r in 0..=n {
         // A_r: r steps at P1 (A_0 is the input itself).
-        let ar: &[[f64; L]] = if r == 0 {
+        let ar: &[N] = if r == 0 {
             c
         } else {
             if r == 1 {
@@ -904,7 +903,7 @@ fn blossom_n<const L: usize>(c: &[[f64; L]], n: usize, p: &[[f64; 3]; 3], out: &
             } else if s > 1 {
                 step(b, top - s + 1, &p[1]);
             }
-            let src: &[[f64; L]] = if s == 0 { ar } else { b };
+            let src: &[N] = if s == 0 { ar } else { b };
             out[tri_index(n, r, s)] = pyramid(src, cc, top - s, &p[2]);
         }
     }

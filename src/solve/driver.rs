@@ -502,7 +502,8 @@ fn restrict_pair(cx: &mut Ctx, precision: Precision, tb: &TriBox) -> (TriBall, T
         Precision::Exact | Precision::Compensated => {
             cx.out.counters.compensated_boxes += 1;
             let [f, g] = cx.dd();
-            (f.subdivide(&tb.verts), g.subdivide(&tb.verts), Precision::Compensated)
+            let (fa, fb) = TriBallDD::subdivide_pair(f, g, &tb.verts);
+            (fa, fb, Precision::Compensated)
         }
         Precision::Float => {
             let (fa, fb) = TriBall::subdivide_pair(&cx.f, &cx.g, &tb.verts);
