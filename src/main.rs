@@ -318,7 +318,8 @@ fn solution_json(sol: &Solution, secs: f64) -> Value {
             "sign_exclusions": s.run.sign_exclusions, "clip_exclusions": s.run.clip_exclusions,
             "krawczyk_calls": s.krawczyk_calls, "krawczyk_exclusions": s.krawczyk_exclusions,
             "leaves": s.leaves, "outside_domain": s.outside_domain, "max_level": s.max_level,
-            "seconds": secs
+            "probes": s.run.probes, "compensated_boxes": s.run.compensated_boxes,
+            "exact_boxes": s.run.exact_boxes, "seconds": secs
         }
     })
 }
