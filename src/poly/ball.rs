@@ -491,15 +491,15 @@ impl TriBall {
         if n >= 2 {
             step(&mut net, 2, b);
         }
-        let grad = if n >= 1 {
+        let (value, grad) = if n >= 1 {
             let k = n as f64;
             let g = [k * (net[1][0] - net[0][0]), k * (net[2][0] - net[0][0])];
-            step(&mut net, 1, b);
-            g
+            let [pu, pv, pw] = *b;
+            (pu.mul_add(net[1][0], pv.mul_add(net[2][0], pw * net[0][0])), g)
         } else {
-            [0.0; 2]
+            (net[0][0], [0.0; 2])
         };
-        (net[0][0], grad, hess)
+        (value, grad, hess)
     }
 }
 

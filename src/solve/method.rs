@@ -299,7 +299,9 @@ pub(crate) fn gauss<const N: usize>(mut a: [[f64; N]; N], mut b: [f64; N], pivot
 /// a constant approximant), from the float approximant.
 fn strip_width(red: &Reduced) -> f64 {
     let a = &red.approx;
-    let g = (a[1] - a[0]).hypot(a[2] - a[0]);
+    // The approximant of a normalized ball: no overflow, so no `hypot`.
+    let (gs, gt) = (a[1] - a[0], a[2] - a[0]);
+    let g = (gs * gs + gt * gt).sqrt();
     if g > 0.0 {
         2.0 * red.delta / g
     } else {
