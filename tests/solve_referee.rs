@@ -602,4 +602,15 @@ fn referee_round7_regressions() {
         let sol = solve(&f, &g, Domain::Triangle, &opts).unwrap();
         assert!(sol.complete && sol.stats.run.boxes < 100, "{method}: {:?}", sol.stats);
     }
+    // Round 8: two cubics running within ~1e-10 of each other along an arc;
+    // the finer singular floor of exact coefficients, unbounded, split that
+    // arc until the 50,000-box budget ran out (the interval version
+    // completed). It is bounded now (`driver::FINE_BUDGET`).
+    let (f, g) = (p("-36/35*u*v^4 - 2400000000000000000009/7000000000000000000000*u*v^3 - 18/35*u^2*v^2 - 6*v^3 + 351428571428571428571/500000000000000000000*u*v^2 - 3/5*u^2*v + 2999999999999999999991/1000000000000000000000*v^2 - 54543999999999999999997/16800000000000000000000*u*v - 1/7*u^2 + 8080000000000000000001/4000000000000000000000*v - 1759/1260*u + 15520000000000000000003/14400000000000000000000"), p("-36/35*u*v^4 - 14400000000000000000009/7000000000000000000000*u*v^3 - 18/35*u^2*v^2 - 6*v^3 + 1559999999999999999997/1000000000000000000000*u*v^2 - 51/35*u^2*v + 2999999999999999999991/1000000000000000000000*v^2 - 46863999999999999999991/16800000000000000000000*u*v - 3/7*u^2 + 8079999999999999999991/4000000000000000000000*v - 919/420*u + 25600000000000000000009/14400000000000000000000"));
+    let opts = SolveOptions {
+        method: Method::HcNoPre,
+        ..SolveOptions::default()
+    };
+    let sol = solve(&f, &g, Domain::Triangle, &opts).unwrap();
+    assert!(sol.complete, "{:?}", sol.stats);
 }

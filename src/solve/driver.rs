@@ -215,6 +215,9 @@ pub struct Run {
     pub counters: Counters,
     /// Probes in a row that proved nothing (see [`FUTILE_PROBES`]).
     pub futile_probes: usize,
+    /// Stalled undecided tri-boxes met below [`SINGULAR_FLOOR`] (see
+    /// [`singular_floor`]).
+    pub fine_boxes: usize,
     /// Strips `[[u_lo, u_hi], [v_lo, v_hi]]` cut off the root triangle along
     /// edges where both equations may vanish ([`vanishing_edges`]); they are
     /// undecided regions, never explored.
@@ -325,6 +328,7 @@ pub fn run<G: Geo>(
             nodes: Vec::new(),
             counters: Counters::default(),
             futile_probes: 0,
+            fine_boxes: 0,
             strips: Vec::new(),
             scale_exp,
         },
@@ -536,13 +540,20 @@ fn sign_hidden(p: &TriBall) -> bool {
 /// Below this diameter a stalled, undecided tri-box is not split further
 /// ([`SINGULAR_FLOOR`] for float coefficients; compensated and exact
 /// coefficients resolve far closer to a multiple root, and two simple roots
-/// 1e-10 apart must still be separated by splitting).
-fn singular_floor(precision: Precision) -> f64 {
+/// 1e-10 apart must still be separated by splitting). The finer floor holds
+/// for at most [`FINE_BUDGET`] tri-boxes below [`SINGULAR_FLOOR`] per run:
+/// it pays for separating a local pair of roots in a handful of splits, but
+/// along a long, nearly tangential stretch of the curves it would spend the
+/// whole budget on ever finer leaves.
+fn singular_floor(cx: &Ctx, precision: Precision) -> f64 {
     match precision {
-        Precision::Float => SINGULAR_FLOOR,
-        Precision::Compensated | Precision::Exact => SINGULAR_FLOOR_PRECISE,
+        Precision::Compensated | Precision::Exact if cx.out.fine_boxes < FINE_BUDGET => SINGULAR_FLOOR_PRECISE,
+        _ => SINGULAR_FLOOR,
     }
 }
+
+/// See [`singular_floor`].
+pub const FINE_BUDGET: usize = 256;
 
 /// [`singular_floor`] for compensated and exact coefficients: their noise is
 /// a few ulps of the tri-box's own coefficients (plus ~1e-30 of the root's),
@@ -704,7 +715,12 @@ fn step<G: Geo>(cx: &mut Ctx, mut item: Leaf, stack: &mut Vec<Leaf>, probe: &mut
                     return;
                 }
                 Combination::Lost => true,
-                Combination::Open => new_diam < singular_floor(next.precision),
+                Combination::Open => {
+                    if new_diam < SINGULAR_FLOOR {
+                        cx.out.fine_boxes += 1;
+                    }
+                    new_diam < singular_floor(cx, next.precision)
+                }
             }
         }
         Probe::Undecided => false,
