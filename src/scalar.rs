@@ -475,6 +475,9 @@ pub fn rational_to_f64(q: &BigRational) -> f64 {
 /// assert_eq!(x.sup().next_down(), x.inf());
 /// ```
 pub fn rational_to_interval(q: &BigRational) -> Interval {
+    if let Some(x) = small_rational_to_interval(q) {
+        return x;
+    }
     let approx = rational_to_f64(q);
     if !approx.is_finite() {
         return if q.is_negative() {
@@ -508,6 +511,31 @@ pub fn rational_to_interval(q: &BigRational) -> Interval {
     }
 }
 
+/// [`rational_to_interval`] for `q = n/d` with `|n|, d ≤ 2⁵³` (both exact in
+/// `f64`), without big-integer work: the nearest quotient `x = n ⊘ d` has the
+/// exact remainder `r = n − x·d` (one FMA; exact for a correctly rounded
+/// quotient of floats, Boldo–Muller), and `n/d − x = r/d` with `d > 0`
+/// (num-rational keeps denominators positive), so the sign of `r` says on
+/// which side of `x` the rational lies — and the adjacent float on that side
+/// closes the tightest bracket. `None` outside that range.
+fn small_rational_to_interval(q: &BigRational) -> Option<Interval> {
+    const EXACT: u64 = 1 << 53;
+    let (n, d) = (q.numer().to_i64()?, q.denom().to_i64()?);
+    if n.unsigned_abs() > EXACT || d <= 0 || d as u64 > EXACT {
+        return None;
+    }
+    let (n, d) = (n as f64, d as f64);
+    let x = n / d;
+    let r = (-x).mul_add(d, n);
+    Some(if r == 0.0 {
+        point(x)
+    } else if r > 0.0 {
+        interval(x, x.next_up())
+    } else {
+        interval(x.next_down(), x)
+    })
+}
+
 /// `true` if the interval `x` contains the rational `q` (exact comparison).
 pub fn interval_contains_rational(x: Interval, q: &BigRational) -> bool {
     if x.is_empty() {
@@ -538,6 +566,53 @@ mod tests {
         assert!(x.inf() < x.sup());
         assert_eq!(x.inf().next_up(), x.sup());
         assert!(interval_contains_rational(x, &q(1, 10)));
+    }
+
+    /// The small-rational fast path gives exactly the interval of the
+    /// exact bracket search, including near the ends of its range.
+    #[test]
+    fn small_rationals_match_the_exact_bracket() {
+        let slow = |q: &BigRational| {
+            let approx = rational_to_f64(q);
+            let back = BigRational::from_float(approx).unwrap();
+            if &back == q {
+                (approx, approx)
+            } else if &back < q {
+                (approx, approx.next_up())
+            } else {
+                (approx.next_down(), approx)
+            }
+        };
+        let big = 1i64 << 53;
+        let mut seed = 0x9e3779b97f4a7c15u64;
+        let mut next = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            seed >> 11
+        };
+        let mut cases: Vec<(i64, i64)> = vec![
+            (0, 1),
+            (1, 3),
+            (-1, 3),
+            (big, 3),
+            (-big, big - 1),
+            (big - 1, big),
+            (7, big),
+        ];
+        for _ in 0..20_000 {
+            let n = (next() % (2 * big as u64 + 1)) as i64 - big;
+            let d = 1 + (next() % big as u64) as i64;
+            let small = 1 + (next() % 1000) as i64;
+            cases.push((n, d));
+            cases.push((n % 1000, small));
+        }
+        for (n, d) in cases {
+            let q = BigRational::new(n.into(), d.into());
+            let x = small_rational_to_interval(&q).expect("in range");
+            assert_eq!((x.inf(), x.sup()), slow(&q), "{n}/{d}");
+            assert!(interval_contains_rational(x, &q));
+        }
+        // Beyond 2^53 the exact path takes over.
+        assert!(small_rational_to_interval(&q(big + 1, 2)).is_none());
     }
 
     #[test]

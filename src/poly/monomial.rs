@@ -227,17 +227,30 @@ impl Polynomial {
     /// Exact BB form on the unit triangle of degree `max(total degree, min_degree)`.
     pub fn to_triangle(&self, min_degree: usize) -> TriBezier<BigRational> {
         let n = (self.total_degree() as usize).max(min_degree);
-        let mut coeffs = vec![BigRational::zero(); tri_len(n)];
-        for ((a, b), c) in &self.terms {
+        // Term (a, b) adds c·C(i,a)C(j,b)/C(n; a,b,n−a−b) to f_ij. Summed over
+        // one common denominator L (the lcm of every term's), the sums are of
+        // integers, and each coefficient is reduced once at the end instead
+        // of after every addition.
+        let dens: Vec<BigInt> = self
+            .terms
+            .iter()
+            .map(|((a, b), c)| {
+                let (a, b) = (*a as usize, *b as usize);
+                c.denom() * multinomial(a, b, n - a - b)
+            })
+            .collect();
+        let common = dens.iter().fold(BigInt::one(), |l, d| num_integer::Integer::lcm(&l, d));
+        let mut sums = vec![BigInt::zero(); tri_len(n)];
+        for (((a, b), c), den) in self.terms.iter().zip(&dens) {
             let (a, b) = (*a as usize, *b as usize);
-            let den = multinomial(a, b, n - a - b);
+            let scale = c.numer() * (&common / den);
             for j in b..=n - a {
                 for i in a..=n - j {
-                    let num = binomial(i, a) * binomial(j, b);
-                    coeffs[tri_index(n, i, j)] += c * BigRational::new(num, den.clone());
+                    sums[tri_index(n, i, j)] += &scale * (binomial(i, a) * binomial(j, b));
                 }
             }
         }
+        let coeffs = sums.into_iter().map(|s| BigRational::new(s, common.clone())).collect();
         TriBezier::new(n, coeffs).expect("exact coefficients are finite")
     }
 

@@ -108,8 +108,9 @@ pub struct ExactSystem {
     shape: Shape,
     f: [Vec<Q>; 2],
     h: Option<Vec<Q>>,
-    /// `∂f_k/∂u`, `∂f_k/∂v` (shapes one degree lower in that variable).
-    df: [[Poly; 2]; 2],
+    /// `∂f_k/∂u`, `∂f_k/∂v` (shapes one degree lower in that variable),
+    /// formed on first use: most solves settle nothing.
+    df: std::sync::OnceLock<[[Poly; 2]; 2]>,
 }
 
 /// One polynomial of an [`ExactSystem`] as the BB type of its shape.
@@ -180,22 +181,24 @@ impl ExactSystem {
                 "{shape:?} needs {len} coefficients per polynomial"
             )));
         }
-        let df = [
-            Poly::new(shape, f.clone()).derivs(),
-            Poly::new(shape, g.clone()).derivs(),
-        ];
         Ok(Self {
             shape,
             f: [f, g],
             h,
-            df,
+            df: std::sync::OnceLock::new(),
         })
+    }
+
+    /// `[[f_u, f_v], [g_u, g_v]]` as exact polynomials.
+    fn df(&self) -> &[[Poly; 2]; 2] {
+        self.df
+            .get_or_init(|| self.f.clone().map(|p| Poly::new(self.shape, p).derivs()))
     }
 
     /// The Jacobian `[f_u, f_v, g_u, g_v]` at `(u, v)`, in `f64` (an
     /// estimate, for deciding whether an exact test is worth its cost).
     pub fn jacobian_f64(&self, u: f64, v: f64) -> [f64; 4] {
-        let d = |k: usize, dir: usize| self.df[k][dir].eval_f64(u, v);
+        let d = |k: usize, dir: usize| self.df()[k][dir].eval_f64(u, v);
         [d(0, 0), d(0, 1), d(1, 0), d(1, 1)]
     }
 
@@ -439,9 +442,9 @@ impl ExactSystem {
         let mid = [x[0].mid_rounded(bits), x[1].mid_rounded(bits)];
         let pt = [RI::point(mid[0].clone()), RI::point(mid[1].clone())];
         let fm = [0, 1].map(|k| eval(self.shape, &self.f[k], &pt).lo);
-        let jm: [[Q; 2]; 2] = [0, 1].map(|k| [0, 1].map(|d| self.df[k][d].enclose(&pt).lo));
+        let jm: [[Q; 2]; 2] = [0, 1].map(|k| [0, 1].map(|d| self.df()[k][d].enclose(&pt).lo));
         let y = inverse(&jm, bits)?;
-        let jx: [[RI; 2]; 2] = [0, 1].map(|k| [0, 1].map(|d| self.df[k][d].enclose(x)));
+        let jx: [[RI; 2]; 2] = [0, 1].map(|k| [0, 1].map(|d| self.df()[k][d].enclose(x)));
         let dx = [x[0].sub_point(&mid[0]), x[1].sub_point(&mid[1])];
         let mut out: [RI; 2] = [RI::point(Q::zero()), RI::point(Q::zero())];
         for (i, o) in out.iter_mut().enumerate() {
