@@ -34,8 +34,9 @@ pub struct Limits {
     /// exact phase can take minutes.
     pub max_exact: usize,
     /// Probe stalled tri-boxes (clip did not halve) smaller than this with
-    /// the `probe` callback of [`run`]; `0` disables probing (as the tables
-    /// do).
+    /// the `probe` callback of [`run`] (and converging ones below
+    /// [`EARLY_CERTIFY`], or below ½ with a predicted contraction under
+    /// [`KAPPA_PROBE`]); `0` disables probing (as the tables do).
     pub probe_below: f64,
     /// The split test.
     pub split: SplitRule,
@@ -705,7 +706,8 @@ fn step<G: Geo>(cx: &mut Ctx, mut item: Leaf, stack: &mut Vec<Leaf>, probe: &mut
         });
         return;
     }
-    // Probes: a converging clip below EARLY_CERTIFY may already be certified
+    // Probes: a converging clip below EARLY_CERTIFY, or below ½ where
+    // newton_kappa predicts contraction, may already be certified
     // (Krawczyk's contraction then converges quadratically without further
     // clips); a stalled one below `probe_below` may be certified or excluded,
     // and below SINGULAR_FLOOR it is not split further.

@@ -59,9 +59,14 @@ pub struct SolveOptions {
     pub max_boxes: usize,
     /// Budget: recursion depth (default 400).
     pub max_depth: usize,
-    /// Probe stalled tri-boxes (a clip that did not halve) below diameter
-    /// `1e-3` with Krawczyk: certify or exclude them early, and stop
-    /// refining undecided ones below `1e-9` (multiple roots). Default `true`;
+    /// Probe tri-boxes with Krawczyk during the iteration: stalled ones (a
+    /// clip that did not halve) below diameter `1e-3`, converging ones below
+    /// `1e-2`, or below `½` where a float prediction of Krawczyk's
+    /// contraction (`κ < 0.3`, see `driver::KAPPA_PROBE`) says a proof is
+    /// likely; certify or exclude them early, and stop refining undecided
+    /// ones below `1e-9` (multiple roots). A probe only ever proves (every
+    /// verdict is Krawczyk's); it decides where the iteration stops, not what
+    /// is true. Default `true`;
     /// `false` runs Algorithm 1 without probes (used by the tables; with
     /// `swap_roles = false` too it is the paper's Algorithm 1 unchanged).
     pub probe: bool,
