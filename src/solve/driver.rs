@@ -822,3 +822,27 @@ pub fn path_diameters(nodes: &[Node], node: usize) -> Vec<f64> {
     out.reverse();
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::rational_to_f64;
+
+    fn ball(expr: &str) -> TriBall {
+        let p = crate::parse_polynomial(expr).unwrap().to_triangle(2);
+        TriBall::from_points(&p.map(rational_to_f64))
+    }
+
+    /// κ on the unit triangle against values worked by hand: 0 for a linear
+    /// system (Newton is exact), `max_i Σ_k |(J⁻¹)_ik| ‖h_k‖` for a circle
+    /// and a line at the centroid (J = [[2/3, 2/3], [1, −1]], J⁻¹ =
+    /// [[3/4, 1/2], [3/4, −1/2]], ‖h_f‖ = 2 + 0 + 2 = 4, h_g = 0: κ = 3), ∞ for
+    /// parallel gradients.
+    #[test]
+    fn newton_kappa_by_hand() {
+        assert_eq!(newton_kappa(&ball("u - 1/3"), &ball("v - 1/4")), 0.0);
+        let k = newton_kappa(&ball("u^2 + v^2 - 1/4"), &ball("u - v"));
+        assert!((k - 3.0).abs() < 1e-12, "{k}");
+        assert_eq!(newton_kappa(&ball("u - v"), &ball("2*u - 2*v + 1")), f64::INFINITY);
+    }
+}
