@@ -253,6 +253,13 @@ impl<P: Bivariate> System<P> {
     /// `jac` encloses the Jacobian over a box containing `k` (see
     /// [`System::step`]).
     fn contract(&self, mut k: IBox, jac: Option<[GeoIv; 4]>) -> IBox {
+        // Already at the rounding floor (the usual final certification of a
+        // leaf at eps, from a box ~1024 ulps wide: K(X) is a few ulps): the
+        // jump's 32-ulp box cannot fit inside, and a further step wins an
+        // ulp at most.
+        if at_rounding_floor(k) {
+            return k;
+        }
         if let Some(b) = self.newton_jump(k, jac) {
             return b;
         }
