@@ -21,6 +21,7 @@ pub mod heuristics;
 pub mod poly;
 pub mod ray;
 pub mod repro;
+pub mod rng;
 pub mod scalar;
 pub mod solve;
 

@@ -584,11 +584,8 @@ mod tests {
             }
         };
         let big = 1i64 << 53;
-        let mut seed = 0x9e3779b97f4a7c15u64;
-        let mut next = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            seed >> 11
-        };
+        let mut rng = crate::rng::Rng(0x9e3779b97f4a7c15);
+        let mut next = || rng.next_u64() >> 11;
         let mut cases: Vec<(i64, i64)> = vec![
             (0, 1),
             (1, 3),

@@ -963,16 +963,7 @@ mod tests {
         BigRational::from_float(x).unwrap()
     }
 
-    /// Deterministic pseudo-random floats in `[-1, 1)`.
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> f64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        }
-    }
+    use crate::rng::Rng;
 
     /// Every exact coefficient of `exact` lies in the ball.
     fn contains(ball: &TriBall, exact: &[BigRational]) -> bool {
@@ -995,12 +986,12 @@ mod tests {
         for case in 0..300 {
             let n = 1 + case % 7;
             let mid: Vec<f64> = (0..tri_len(n))
-                .map(|_| rng.next() * [1.0, 1e-3, 7.0][case % 3])
+                .map(|_| rng.next_signed() * [1.0, 1e-3, 7.0][case % 3])
                 .collect();
             let ball = TriBall::new(n, &mid, 0.0).unwrap();
             let mut vert = || {
-                let s = 0.5 + 0.55 * rng.next();
-                let t = (0.5 + 0.55 * rng.next()) * (1.0 - s).max(0.0);
+                let s = 0.5 + 0.55 * rng.next_signed();
+                let t = (0.5 + 0.55 * rng.next_signed()) * (1.0 - s).max(0.0);
                 [s, t]
             };
             let verts = [vert(), vert(), vert()];
@@ -1032,9 +1023,9 @@ mod tests {
         for case in 0..200 {
             let n = 1 + case % 6;
             // Exact coefficients that are not floats, around a zero at the centre.
-            let exact: Vec<BigRational> = (0..tri_len(n)).map(|_| q(rng.next()) * &third).collect();
+            let exact: Vec<BigRational> = (0..tri_len(n)).map(|_| q(rng.next_signed()) * &third).collect();
             let p0 = TriBezier::new(n, exact).unwrap();
-            let centre = [0.3 + 0.1 * rng.next(), 0.2 + 0.1 * rng.next()];
+            let centre = [0.3 + 0.1 * rng.next_signed(), 0.2 + 0.1 * rng.next_signed()];
             let bc = [q(centre[0]), q(centre[1]), q(1.0) - q(centre[0]) - q(centre[1])];
             let value = p0.eval_bary(&bc);
             let p = TriBezier::new(n, p0.coeffs().iter().map(|c| c - &value).collect()).unwrap();
@@ -1088,8 +1079,12 @@ mod tests {
         for case in 0..200 {
             let n = 1 + case % 6;
             let k = 1 + case % 2;
-            let mid: Vec<f64> = (0..tri_len(n)).map(|_| rng.next()).collect();
-            let rad = if case % 3 == 0 { 0.0 } else { 1e-9 * (rng.next() + 1.0) };
+            let mid: Vec<f64> = (0..tri_len(n)).map(|_| rng.next_signed()).collect();
+            let rad = if case % 3 == 0 {
+                0.0
+            } else {
+                1e-9 * (rng.next_signed() + 1.0)
+            };
             let ball = TriBall::new(n, &mid, rad).unwrap();
             let red = ball.reduce(k);
             assert_eq!(red.approx.len(), tri_len(k));
@@ -1118,10 +1113,20 @@ mod tests {
         let mut rng = Rng(0x0bad_cafe_f00d_0001);
         for case in 0..200 {
             let n = 1 + case % 5;
-            let p = TriBall::new(n, &(0..tri_len(n)).map(|_| rng.next()).collect::<Vec<_>>(), 1e-12).unwrap();
-            let qb = TriBall::new(n, &(0..tri_len(n)).map(|_| rng.next() * 3.0).collect::<Vec<_>>(), 0.0).unwrap();
-            let l = [rng.next() * 5.0, rng.next(), rng.next() * 0.1];
-            let m = [1.0 / 3.0, rng.next(), 1.0];
+            let p = TriBall::new(
+                n,
+                &(0..tri_len(n)).map(|_| rng.next_signed()).collect::<Vec<_>>(),
+                1e-12,
+            )
+            .unwrap();
+            let qb = TriBall::new(
+                n,
+                &(0..tri_len(n)).map(|_| rng.next_signed() * 3.0).collect::<Vec<_>>(),
+                0.0,
+            )
+            .unwrap();
+            let l = [rng.next_signed() * 5.0, rng.next_signed(), rng.next_signed() * 0.1];
+            let m = [1.0 / 3.0, rng.next_signed(), 1.0];
             let out = TriBall::linear_combination(l, &p, m, &qb);
             let lin = |c: [f64; 3]| TriBezier::new(1, c.iter().map(|&x| q(x)).collect()).unwrap();
             for sign in [-1.0, 1.0] {
@@ -1129,7 +1134,7 @@ mod tests {
                 let want = lin(l).mul(&pe).add(&lin(m).mul(&exact_of(&qb)));
                 assert!(contains(&out, want.coeffs()), "case {case}");
             }
-            let (a, b) = (rng.next(), rng.next() * 1e3);
+            let (a, b) = (rng.next_signed(), rng.next_signed() * 1e3);
             let c = TriBall::combine(a, &p, b, &qb);
             let want: Vec<BigRational> = exact_of(&p)
                 .coeffs()

@@ -3,19 +3,7 @@
 use super::{Patch, Ray};
 use glam::DVec3;
 
-/// xorshift64*: a fixed, dependency-free stream of uniform floats in `[0, 1)`.
-#[derive(Clone, Debug)]
-pub struct Rng(pub u64);
-
-impl Rng {
-    /// The next uniform float in `[0, 1)` (53 random bits).
-    pub fn next_f64(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+pub use crate::rng::Rng;
 
 /// `n` rays with origins uniform on the sphere of radius `radius` around the
 /// centre of the control net's bounding box, each aimed at a uniform point

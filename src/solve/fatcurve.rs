@@ -891,13 +891,8 @@ mod tests {
     fn bezier_bounds_are_below_the_exact_hull_crossings() {
         use num_rational::BigRational;
         use num_traits::{Signed, Zero};
-        let mut seed: u64 = 0x9e3779b97f4a7c15;
-        let mut rnd = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut rng = crate::rng::Rng(0x9e3779b97f4a7c15);
+        let mut rnd = move || rng.next_u64();
         for case in 0..600 {
             let n = 1 + case % 6;
             let len = (n + 1) * (n + 2) / 2;

@@ -1220,13 +1220,8 @@ mod tests {
     /// one line.
     #[test]
     fn touching_pairs_match_brute_force() {
-        let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
-        let mut rnd = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::rng::Rng(0x2545_f491_4f6c_dd1d);
+        let mut rnd = move || rng.next_f64();
         for case in 0..6 {
             let n = [10, 70, 300, 1000, 2000, 500][case];
             let mut rects: Vec<[f64; 4]> = (0..n)
