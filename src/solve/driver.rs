@@ -565,15 +565,6 @@ fn finer(cx: &Ctx, precision: Precision, diam: f64) -> Option<Precision> {
     }
 }
 
-/// A polynomial whose coefficients all share a strict sign that its ball's
-/// radius hides (some within rounding of 0): a more precise computation can
-/// exclude the tri-box, and exact coefficients prove their signs one by one
-/// whatever their sizes (a sparse system whose small terms are far below the
-/// rounding of its large ones).
-fn sign_hidden(p: &TriBall) -> bool {
-    p.sign_hidden()
-}
-
 /// Below this diameter a stalled, undecided tri-box is not split further
 /// ([`SINGULAR_FLOOR`] for float coefficients; compensated and exact
 /// coefficients resolve far closer to a multiple root, and two simple roots
@@ -599,17 +590,28 @@ pub const FINE_BUDGET: usize = 256;
 /// the float grid of the vertices.
 pub const SINGULAR_FLOOR_PRECISE: f64 = 1e-13;
 
+/// Whether a rigorous run should recompute a tri-box's coefficients more
+/// precisely: `Some(true)` when a sign is hidden by the radius
+/// ([`TriBall::sign_hidden`]: exact coefficients prove their signs one by one
+/// at any size, within the exact budget — a sparse system whose small terms
+/// are far below the rounding of its large ones), `Some(false)` when the
+/// coefficients are only noisy relative to their values (which matters on
+/// small tri-boxes), `None` otherwise and always for the float kernel.
+fn needs_finer<G: Geo>(item: &Leaf) -> Option<bool> {
+    if !G::RIGOROUS {
+        return None;
+    }
+    let hidden = item.fa.sign_hidden() || item.fb.sign_hidden();
+    (hidden || noisy(&item.fa) || noisy(&item.fb)).then_some(hidden)
+}
+
 fn step<G: Geo>(cx: &mut Ctx, mut item: Leaf, stack: &mut Vec<Leaf>, probe: &mut dyn FnMut(&TriBox) -> Probe) {
     let limits = cx.limits;
     let level = cx.out.nodes[item.node].level + 1;
     let diam = item.tb.diam();
-    // The coefficients are noisy relative to their values: recompute more
-    // precisely before the clip is spoiled by rounding (same tri-box, same
-    // level), as long as a finer precision helps.
-    while G::RIGOROUS && (noisy(&item.fa) || noisy(&item.fb) || sign_hidden(&item.fa) || sign_hidden(&item.fb)) {
-        // A hidden sign may be proven exactly at any size (within the exact
-        // budget); noise only matters on small tri-boxes.
-        let hidden = sign_hidden(&item.fa) || sign_hidden(&item.fb);
+    // Recompute more precisely (same tri-box, same level) before the clip is
+    // spoiled by rounding, as long as a finer precision helps.
+    while let Some(hidden) = needs_finer::<G>(&item) {
         let Some(next) = finer(cx, item.precision, if hidden { 0.0 } else { diam }) else {
             break;
         };

@@ -815,10 +815,7 @@ fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &Solv
 /// union–find over the pairs that [`touching_pairs`] finds.
 fn group_overlapping(items: Vec<Found>) -> Vec<Vec<Found>> {
     let n = items.len();
-    let rects: Vec<[f64; 4]> = items
-        .iter()
-        .map(|f| [f.bx[0].inf(), f.bx[0].sup(), f.bx[1].inf(), f.bx[1].sup()])
-        .collect();
+    let rects: Vec<Box2> = items.iter().map(|f| Box2::of(f.bx)).collect();
     let mut parent: Vec<usize> = (0..n).collect();
     fn find(p: &mut [usize], mut i: usize) -> usize {
         while p[i] != i {
@@ -844,31 +841,31 @@ fn group_overlapping(items: Vec<Found>) -> Vec<Vec<Found>> {
     groups
 }
 
-/// Calls `found(i, j)` for every pair of closed rectangles `[u_lo, u_hi, v_lo,
-/// v_hi]` that share a point (some pairs may be reported twice). Leaves are
+/// Calls `found(i, j)` for every pair of closed boxes that share a point
+/// ([`Box2::overlaps`]; some pairs may be reported twice). Leaves are
 /// many and similar in size, often strung along one coordinate (a sliver of
 /// near-roots along an edge), where a sweep over `u` compares all pairs: so
 /// they are hashed into a grid of cells the size of the median rectangle, and
 /// only rectangles sharing a cell are compared (rectangles much larger than a
 /// cell are compared with every other). Small inputs compare all pairs.
-fn touching_pairs(rects: &[[f64; 4]], mut found: impl FnMut(usize, usize)) {
-    let touch = |a: &[f64; 4], b: &[f64; 4]| a[0] <= b[1] && b[0] <= a[1] && a[2] <= b[3] && b[2] <= a[3];
+fn touching_pairs(rects: &[Box2], mut found: impl FnMut(usize, usize)) {
     let n = rects.len();
-    let mut sizes: Vec<f64> = rects.iter().map(|r| (r[1] - r[0]).max(r[3] - r[2])).collect();
+    let side = |r: &Box2| (r.u[1] - r.u[0]).max(r.v[1] - r.v[0]);
+    let mut sizes: Vec<f64> = rects.iter().map(side).collect();
     sizes.sort_by(f64::total_cmp);
     let cell = sizes.get(n / 2).copied().unwrap_or(0.0);
     let usable = n > 64 && cell > 0.0 && cell.is_finite();
     let key = |x: f64| (x / cell).floor() as i64;
     // Rectangles spanning more than 8 cells either way (or not finite).
-    let big = |r: &[f64; 4]| !usable || !r.iter().all(|x| x.is_finite()) || (r[1] - r[0]).max(r[3] - r[2]) > 8.0 * cell;
+    let big = |r: &Box2| !usable || !r.u.iter().chain(&r.v).all(|x| x.is_finite()) || side(r) > 8.0 * cell;
     let (mut large, mut grid) = (Vec::new(), std::collections::HashMap::<(i64, i64), Vec<usize>>::new());
     for (i, r) in rects.iter().enumerate() {
         if big(r) {
             large.push(i);
             continue;
         }
-        for a in key(r[0])..=key(r[1]) {
-            for b in key(r[2])..=key(r[3]) {
+        for a in key(r.u[0])..=key(r.u[1]) {
+            for b in key(r.v[0])..=key(r.v[1]) {
                 grid.entry((a, b)).or_default().push(i);
             }
         }
@@ -876,7 +873,7 @@ fn touching_pairs(rects: &[[f64; 4]], mut found: impl FnMut(usize, usize)) {
     for members in grid.values() {
         for (k, &i) in members.iter().enumerate() {
             for &j in &members[k + 1..] {
-                if touch(&rects[i], &rects[j]) {
+                if rects[i].overlaps(&rects[j]) {
                     found(i, j);
                 }
             }
@@ -884,7 +881,7 @@ fn touching_pairs(rects: &[[f64; 4]], mut found: impl FnMut(usize, usize)) {
     }
     for &i in &large {
         for j in 0..n {
-            if j != i && touch(&rects[i], &rects[j]) {
+            if j != i && rects[i].overlaps(&rects[j]) {
                 found(i, j);
             }
         }
@@ -1240,8 +1237,15 @@ mod tests {
             rects.push([r0[1], r0[1] + 0.1, r0[2], r0[3]]);
             rects.push([r0[1], r0[1] + 0.1, r0[3], r0[3] + 0.1]);
             rects.push([-1.0, 2.0, 0.5, 0.5]);
+            let boxes: Vec<Box2> = rects
+                .iter()
+                .map(|r| Box2 {
+                    u: [r[0], r[1]],
+                    v: [r[2], r[3]],
+                })
+                .collect();
             let mut got = std::collections::BTreeSet::new();
-            touching_pairs(&rects, |i, j| {
+            touching_pairs(&boxes, |i, j| {
                 got.insert((i.min(j), i.max(j)));
             });
             let mut want = std::collections::BTreeSet::new();
