@@ -63,6 +63,13 @@ impl<G: Geo> Linear<G> {
 }
 
 impl<S: Geo> Linear<S> {
+    /// The coefficients mapped by `f` (`None` if one maps to `None`).
+    fn mid(&self, f: impl Fn(S) -> Option<f64>) -> Option<Linear<f64>> {
+        Some(Linear {
+            c: [f(self.c[0])?, f(self.c[1])?, f(self.c[2])?],
+        })
+    }
+
     /// Value at `(s, t)`.
     pub fn eval(&self, s: S, t: S) -> S {
         self.c[0] + self.c[1] * s + self.c[2] * t
@@ -140,6 +147,20 @@ pub enum Fat<S> {
 }
 
 impl<S: Geo> Fat<S> {
+    /// The same fat curve with coefficients mapped by `f` (midpoints).
+    fn mid(&self, f: impl Fn(S) -> Option<f64>) -> Option<Fat<f64>> {
+        Some(match self {
+            Fat::Line(l, d) => Fat::Line(l.mid(f)?, *d),
+            Fat::Conic(q, d) => {
+                let mut c = [0.0; 6];
+                for (x, y) in c.iter_mut().zip(q.c) {
+                    *x = f(y)?;
+                }
+                Fat::Conic(Quadratic { c }, *d)
+            }
+        })
+    }
+
     fn possibly_contains(&self, s: S, t: S) -> bool {
         let (val, d) = match self {
             Fat::Line(l, d) => (l.eval(s, t), *d),
@@ -243,7 +264,367 @@ fn keep_or_empty(m: [f64; 3], rigorous: bool) -> ClipBounds {
 /// [`GeoIv`](super::num::GeoIv), whose enclosures are as rigorous as inari's
 /// (a few floats wider) at a fraction of the cost.
 pub fn clip_against_fat_curves<G: Geo>(fats: &[Fat<G>]) -> ClipBounds {
+    if G::RIGOROUS {
+        if let Some(verified) = proposed_and_verified(fats) {
+            return verified;
+        }
+    }
     clip_in(fats)
+}
+
+/// The relative margin a verified float clip gives up: the kept tri-box is
+/// the float one widened by `VERIFY_MARGIN` of its size on each clipped side.
+pub const VERIFY_MARGIN: f64 = 1.0 / (1u64 << 20) as f64;
+
+/// Float proposes, intervals verify: the clip of the float kernel, widened
+/// by [`VERIFY_MARGIN`], if [`Verifier::sliver_free`] proves every clipped
+/// sliver free of `R`; `Empty` if it proves the whole tri-box free; `None`
+/// (no claim) when a proof fails, and the caller computes the
+/// enclosure-based bounds of [`clip_in`].
+///
+/// Both answers are as rigorous as [`clip_in`]'s in a rigorous kernel: a
+/// bound `m_k` is returned only with a proof that no point of the tri-box
+/// with barycentric coordinate `k` at most `m_k` lies in both fat regions.
+/// The float clip only chooses which `m_k` to try. The first fat curve must
+/// be a line (it is for every fat-curve method: `f^α` or `f̂`).
+fn proposed_and_verified<G: Geo>(fats: &[Fat<G>]) -> Option<ClipBounds> {
+    let [Fat::Line(line, da), other] = fats else {
+        return None;
+    };
+    let mid = |x: G| {
+        let m = 0.5 * (x.lower() + x.upper());
+        m.is_finite().then_some(m)
+    };
+    let float = [Fat::Line(line.mid(mid)?, *da), other.mid(mid)?];
+    let proposal = clip_in::<f64>(&float);
+    let verifier = Verifier::new(line, *da, other);
+    match proposal {
+        ClipBounds::Empty => (0..3)
+            .any(|k| verifier.sliver_free(k, 1.0))
+            .then_some(ClipBounds::Empty),
+        ClipBounds::Keep(m) => {
+            let size = 1.0 - (m[0] + m[1] + m[2]);
+            // Also NaN: no proposal.
+            if size.is_nan() || size <= 0.0 {
+                return None;
+            }
+            let margin = VERIFY_MARGIN * size + 1e-15;
+            let mut keep = [0.0; 3];
+            for k in 0..3 {
+                let mk = m[k] - margin;
+                if mk > 0.0 {
+                    if !verifier.sliver_free(k, mk) {
+                        return None;
+                    }
+                    keep[k] = mk;
+                }
+            }
+            Some(ClipBounds::Keep(keep))
+        }
+    }
+}
+
+/// The data of [`Verifier::sliver_free`] shared by the three slivers of one
+/// clip: the fat line `|L| ≤ δ_a`, `L = l0 + l1 s + l2 t`, and the other fat
+/// curve `|P| ≤ δ_b` as a quadratic `P` (a line has zero second-order terms),
+/// with the products of `∇²P / 2` its proofs use.
+struct Verifier<G> {
+    l: [G; 3],
+    da: f64,
+    /// `[−δ_a, δ_a]`.
+    lambda: G,
+    /// `P`'s coefficients (the order of [`Quadratic`]).
+    q: [G; 6],
+    db: f64,
+    /// The strip's direction `v = (l2, −l1)`.
+    v: (G, G),
+    /// `(∇²P / 2) v`.
+    hv: (G, G),
+    /// `vᵀ (∇²P / 2) v`.
+    vhv: G,
+    /// `wᵀ (∇²P / 2) w` for the directions `w` along `u = const`
+    /// (`(0, 1)`), `v = const` (`(1, 0)`) and `w = const` (`(1, −1)`).
+    hw: [G; 3],
+}
+
+impl<G: Geo> Verifier<G> {
+    fn new(line: &Linear<G>, da: f64, other: &Fat<G>) -> Self {
+        let zero = G::pt(0.0);
+        let (q, db) = match other {
+            Fat::Line(l, db) => ([l.c[0], l.c[1], l.c[2], zero, zero, zero], *db),
+            Fat::Conic(q, db) => (q.c, *db),
+        };
+        let [_, l1, l2] = line.c;
+        let v = (l2, -l1);
+        let c4h = q[4] * G::pt(0.5);
+        let hv = (q[3] * v.0 + c4h * v.1, c4h * v.0 + q[5] * v.1);
+        Verifier {
+            l: line.c,
+            da,
+            lambda: G::pt(-da).hull(G::pt(da)),
+            q,
+            db,
+            v,
+            hv,
+            vhv: v.0 * hv.0 + v.1 * hv.1,
+            hw: [q[5], q[3], q[3] - q[4] + q[5]],
+        }
+    }
+
+    /// `P` and `∇P` at `(s, t)`.
+    fn jet(&self, (s, t): (G, G)) -> (G, G, G) {
+        let c = &self.q;
+        let two = G::pt(2.0);
+        let p = c[0] + s * (c[1] + c[3] * s + c[4] * t) + t * (c[2] + c[5] * t);
+        (p, c[1] + two * c[3] * s + c[4] * t, c[2] + c[4] * s + two * c[5] * t)
+    }
+
+    /// `aᵀ (∇²P / 2) b`.
+    fn half_hessian(&self, a: (G, G), b: (G, G)) -> G {
+        let c = &self.q;
+        c[3] * a.0 * b.0 + c[4] * G::pt(0.5) * (a.0 * b.1 + a.1 * b.0) + c[5] * a.1 * b.1
+    }
+
+    /// Proves (`true`) that no point of the tri-box with barycentric
+    /// coordinate `σ = (u, v, w)[k] ≤ m` lies both in the fat line and in the
+    /// other fat curve; `false` means "not proven".
+    ///
+    /// # The argument
+    /// In coordinates `(σ, τ)` (`τ = v` for `k = 0`, else `u`) the tri-box
+    /// is `T = {σ, τ ≥ 0, σ + τ ≤ 1}` and `L = l0' + lσ σ + lτ τ`. Either
+    /// `L`'s values at the four corners of the (convex) sliver
+    /// `Ω0 = T ∩ {σ ≤ m}` lie beyond `δ_a` on one side, and the strip misses
+    /// it; or, with `lτ ≠ 0` proven, the strip is swept by the parallel lines
+    /// `L = λ`, `|λ| ≤ δ_a`, which run along `d = ±v / lτ` (`dσ/dh = 1`). From
+    /// a point `p` of `Ω = Ω0 ∩ strip` follow `p + h d`, `h ≥ 0`: it stays on
+    /// its line, so it leaves `Ω` through an *exit piece*: the end segment
+    /// `σ = m` (within `T`), or the part of edge `τ = 0` or `σ + τ = 1` in
+    /// the strip with `σ ≤ m` (an exit only if the lines cross it outward).
+    /// So `p = x − h d` for an exit point `x` and `0 ≤ h ≤ σ(x)`, and since
+    /// `P` has degree ≤ 2, `P(x − h d) = E − D h + C h²` exactly, with
+    /// `E = P(x)`, `D = ∇P(x)·d`, `C = dᵀ(∇²P/2)d`. Each piece is a segment
+    /// `x0 + μ f`; `E` and `D` are enclosed over it by their (exact) Taylor
+    /// expansions at `x0`, and [`bounded_away`] proves `E − D h + C h² > δ_b`
+    /// (or `< −δ_b`) on `[0, σ_max]`. Then no point of `Ω` has `|P| ≤ δ_b`.
+    fn sliver_free(&self, k: usize, m: f64) -> bool {
+        let (zero, one) = (G::pt(0.0), G::pt(1.0));
+        let [a0, a1, a2] = self.l;
+        // L's coefficients in the frame, and the frame's map to (s, t):
+        // k = 0: (σ, τ); k = 1: (τ, σ); k = 2: (τ, 1 − σ − τ).
+        let (l0, ls, lt) = match k {
+            0 => (a0, a1, a2),
+            1 => (a0, a2, a1),
+            _ => (a0 + a2, -a2, a1 - a2),
+        };
+        let at = |sig: G, tau: G| match k {
+            0 => (sig, tau),
+            1 => (tau, sig),
+            _ => (tau, one - sig - tau),
+        };
+        let sig_m = G::pt(m);
+        let da = self.da;
+        let base = l0 + ls * sig_m;
+        let far = base + lt * (one - sig_m);
+        let corners = [l0, l0 + lt, base, far];
+        if corners.iter().all(|x| x.lower() > da) || corners.iter().all(|x| x.upper() < -da) {
+            return true;
+        }
+        if !lt.nonzero() {
+            return false;
+        }
+        let r = one / lt;
+        let r2 = square(r);
+        // d = v / σ(v) with σ(v) = lτ, except −lτ for k = 1.
+        let sign = |x: G| if k == 1 { -x } else { x };
+        let c = self.vhv * r2;
+        let slope = -ls * r;
+        // The end segment: σ = m, L = λ between `base` and `far` (τ from 0
+        // to 1 − m), |λ| ≤ δ_a; along it x = x0 + μ w r, w = (0, 1), (1, 0)
+        // or (1, −1), expanded at the middle λc (τ0 = (λc − base) / lτ).
+        if let Some(lam) = clamp_hull(base.hull(far), self.lambda) {
+            let lc = G::pt(0.5 * (lam.lower() + lam.upper()));
+            let tau0 = (lc - base) * r;
+            let (p, gs, gt) = self.jet(at(sig_m, tau0));
+            let (gw, hwv) = match k {
+                0 => (gt, self.hv.1),
+                1 => (gs, self.hv.0),
+                _ => (gs - gt, self.hv.0 - self.hv.1),
+            };
+            let gv = gs * self.v.0 + gt * self.v.1;
+            let piece = Piece {
+                p,
+                b: gw * r,
+                a: self.hw[k] * r2,
+                d0: sign(gv * r),
+                d1: sign(G::pt(2.0) * hwv * r2),
+                c,
+                db: self.db,
+            };
+            // Back along d from x, σ falls by h and τ by slope·h: the path
+            // leaves the tri-box (and never returns) at τ = 0 or σ + τ = 1.
+            let h_max = |mu: G| {
+                let tau = tau0 + mu * r;
+                let mut h = m;
+                if slope.lower() > 0.0 {
+                    h = h.min((G::pt(tau.upper()) / G::pt(slope.lower())).upper());
+                }
+                let grow = -(one + slope);
+                if grow.lower() > 0.0 {
+                    h = h.min(((one - sig_m - G::pt(tau.lower())) / G::pt(grow.lower())).upper());
+                }
+                G::pt(h.max(0.0))
+            };
+            if !piece.clear(lam - lc, &h_max, SPLITS) {
+                return false;
+            }
+        }
+        // The edges τ = 0 (an exit where τ falls along d: lσ/lτ > 0) and
+        // σ + τ = 1 (where σ + τ grows: 1 − lσ/lτ > 0), as τ = τ0 + dτ σ,
+        // with L = c0 + c1 σ on them.
+        let edges = [
+            (slope.lower() < 0.0, l0, ls, zero, zero),
+            ((one + slope).upper() > 0.0, l0 + lt, ls - lt, one, -one),
+        ];
+        let dir = (sign(self.v.0 * r), sign(self.v.1 * r));
+        for (exit, c0, c1, tau0, dtau) in edges {
+            if !exit {
+                continue;
+            }
+            // σ ∈ [0, m] with |c0 + c1 σ| ≤ δ_a.
+            let range = if c1.nonzero() {
+                let (x, y) = ((G::pt(-da) - c0) / c1, (G::pt(da) - c0) / c1);
+                clamp_hull(x.hull(y), zero.hull(sig_m))
+            } else {
+                Some(zero.hull(sig_m))
+            };
+            let Some(range) = range else { continue };
+            let mid = G::pt(0.5 * (range.lower() + range.upper()));
+            // x = x0 + μ f with f the edge's direction per unit σ.
+            let f = at(one, dtau);
+            let f = if k == 2 { (f.0, f.1 - one) } else { f };
+            let (p, gs, gt) = self.jet(at(mid, tau0 + dtau * mid));
+            let piece = Piece {
+                p,
+                b: gs * f.0 + gt * f.1,
+                a: self.half_hessian(f, f),
+                d0: gs * dir.0 + gt * dir.1,
+                d1: G::pt(2.0) * self.half_hessian(f, dir),
+                c,
+                db: self.db,
+            };
+            // σ(x) = mid + μ bounds h.
+            if !piece.clear(range - mid, &|mu: G| G::pt((mid + mu).upper()), SPLITS) {
+                return false;
+            }
+        }
+        true
+    }
+}
+
+/// How often [`Piece::clear`] may halve a piece that fails as a whole.
+const SPLITS: u32 = 2;
+
+/// `P(x0 + μ f − h d) = E(μ) − D(μ) h + C h²` on an exit piece of
+/// [`Verifier::sliver_free`]: exactly `E = p + b μ + a μ²`, `D = d0 + d1 μ`.
+struct Piece<G> {
+    p: G,
+    b: G,
+    a: G,
+    d0: G,
+    d1: G,
+    c: G,
+    db: f64,
+}
+
+impl<G: Geo> Piece<G> {
+    /// Proves `|P| > δ_b` (one sign) for `μ ∈ mu`, `0 ≤ h ≤ h_max(μ-range)`;
+    /// where the whole piece fails, its halves are tried (`splits` levels):
+    /// [`bounded_away`] bounds `E` and `D` separately, which loses the
+    /// coupling through `μ` on a long piece.
+    fn clear(&self, mu: G, h_max: &impl Fn(G) -> G, splits: u32) -> bool {
+        let d = self.d0 + self.d1 * mu;
+        let h = h_max(mu);
+        let e = self.p + mu * self.b + square(mu) * self.a;
+        if bounded_away(e, d, self.c, h, self.db)
+            || bounded_away(quadratic_range(self.p, self.b, self.a, mu), d, self.c, h, self.db)
+        {
+            return true;
+        }
+        if splits == 0 {
+            return false;
+        }
+        let (lo, hi) = (mu.lower(), mu.upper());
+        let mid = 0.5 * (lo + hi);
+        if !(lo < mid && mid < hi) {
+            return false;
+        }
+        self.clear(G::pt(lo).hull(G::pt(mid)), h_max, splits - 1)
+            && self.clear(G::pt(mid).hull(G::pt(hi)), h_max, splits - 1)
+    }
+}
+
+/// `{x² : x ∈ a}` (not `a · a`, which is negative where `a` straddles 0).
+fn square<G: Geo>(a: G) -> G {
+    if a.lower() >= 0.0 || a.upper() <= 0.0 {
+        a * a
+    } else {
+        let m = G::pt(a.mag());
+        G::pt(0.0).hull(m * m)
+    }
+}
+
+/// An enclosure of `{p + b μ + a μ² : μ ∈ mu}` that is tight for a wide
+/// `mu` (the sum of the terms' enclosures is not: it treats `μ` and `μ²` as
+/// independent): the values at the ends of `mu`, and at the vertex
+/// `−b / (2a)` if it may lie in `mu`.
+fn quadratic_range<G: Geo>(p: G, b: G, a: G, mu: G) -> G {
+    let at = |x: f64| {
+        let x = G::pt(x);
+        p + x * (b + a * x)
+    };
+    let ends = at(mu.lower()).hull(at(mu.upper()));
+    if !a.nonzero() {
+        // The vertex is anywhere (or absent): keep the term-wise enclosure.
+        return ends.hull(p + mu * b + square(mu) * a);
+    }
+    let two = G::pt(2.0);
+    let vertex = -b / (two * a);
+    if vertex.upper() < mu.lower() || vertex.lower() > mu.upper() {
+        ends
+    } else {
+        ends.hull(p - square(b) / (two * two * a))
+    }
+}
+
+/// `a ∩ b` as an enclosure, `None` when provably empty.
+fn clamp_hull<G: Geo>(a: G, b: G) -> Option<G> {
+    let (lo, hi) = (a.lower().max(b.lower()), a.upper().min(b.upper()));
+    (lo <= hi).then(|| G::pt(lo).hull(G::pt(hi)))
+}
+
+/// Proves `E − D h + C h² > δ` for all `h ∈ [0, h_max]` and all members of
+/// the enclosures `e`, `d`, `c`, or `< −δ` for all of them. For `h ≥ 0` the
+/// expression is at least `g(h) = E_lo − D_hi h + C_lo h²`, whose minimum on
+/// the interval is at an end, or at the vertex `h* = D_hi / (2 C_lo)` when
+/// `g` is convex and falls at 0; the mirror image bounds it from above.
+fn bounded_away<G: Geo>(e: G, d: G, c: G, h_max: G, delta: f64) -> bool {
+    let above = |e_lo: f64, d_hi: f64, c_lo: f64| {
+        if e_lo.is_nan() || e_lo <= delta {
+            return false;
+        }
+        let (e, d, c) = (G::pt(e_lo), G::pt(d_hi), G::pt(c_lo));
+        if (e - d * h_max + c * h_max * h_max).lower() <= delta {
+            return false;
+        }
+        if d_hi > 0.0 && c_lo > 0.0 {
+            let two = G::pt(2.0);
+            let vertex = d / (two * c);
+            // h* beyond h_max: g falls on the whole interval, minimum at h_max.
+            return vertex.lower() >= h_max.upper() || (e - d * vertex / two).lower() > delta;
+        }
+        true
+    };
+    above(e.lower(), d.upper(), c.lower()) || above(-e.upper(), -d.lower(), -c.upper())
 }
 
 /// A boundary line with what its candidates need, computed once per line:
@@ -869,7 +1250,9 @@ mod tests {
                 Fat::Line(l, d) => Fat::Line(Linear { c: l.c.map(GeoIv::of) }, d),
                 Fat::Conic(q, d) => Fat::Conic(Quadratic { c: q.c.map(GeoIv::of) }, d),
             });
-            let fast = clip_against_fat_curves(&fast_fats);
+            // The enclosure-based bounds in both kernels (the verified float
+            // clip that `clip_against_fat_curves` tries first is tested below).
+            let fast = clip_in(&fast_fats);
             let reference = clip_in(&fats);
             match (fast, reference) {
                 (ClipBounds::Keep(f), ClipBounds::Keep(r)) => {
@@ -882,6 +1265,180 @@ mod tests {
             }
         }
         assert!(compared > 50, "{compared}");
+    }
+
+    /// The verified float clip never claims too much, checked independently
+    /// with inari: on random fat lines and fat conics (and pairs of fat
+    /// lines) through a random point, every point proven (by direct interval
+    /// evaluation) to lie in the tri-box and in both fat regions satisfies the
+    /// returned bounds, and an `Empty` claim has no such point. The points
+    /// are where the minima sit: crossings of the strip's lines
+    /// (`L = λ`, 41 values of `λ`) with `P = 0` and `P = ±δ_b`, crossings of
+    /// the tri-box edges with `L = ±δ_a` and with `P = ±δ_b`, and a grid.
+    #[test]
+    fn verified_clips_hold_every_feasible_point() {
+        let mut rng = crate::rng::Rng(0x5eed_c11b);
+        let (mut kept, mut empty, mut declined, mut checked) = (0, 0, 0, 0);
+        let (mut proofs, mut refuted) = (0, 0);
+        for case in 0..500 {
+            let mut r = || rng.next_f64();
+            let (s0, t0) = (1.4 * r() - 0.2, 1.4 * r() - 0.2);
+            let log_uniform = |x: f64, lo: f64, hi: f64| (lo.ln() + x * (hi.ln() - lo.ln())).exp();
+            let (da, db) = (log_uniform(r(), 1e-9, 0.3), log_uniform(r(), 1e-9, 0.3));
+            let (g1, g2) = (2.0 * r() - 1.0, 2.0 * r() - 1.0);
+            let l = [-(g1 * s0 + g2 * t0) + 0.1 * da * (2.0 * r() - 1.0), g1, g2];
+            let (h1, h2) = (2.0 * r() - 1.0, 2.0 * r() - 1.0);
+            let curv = [0.0, 0.3, 1.0, 4.0][case % 4];
+            let (q3, q4, q5) = (
+                curv * (2.0 * r() - 1.0),
+                curv * (2.0 * r() - 1.0),
+                curv * (2.0 * r() - 1.0),
+            );
+            // Q(s, t) = h1 (s − s0) + h2 (t − t0) + the quadratic terms in (s − s0, t − t0).
+            let q = [
+                -(h1 * s0 + h2 * t0) + q3 * s0 * s0 + q4 * s0 * t0 + q5 * t0 * t0,
+                h1 - 2.0 * q3 * s0 - q4 * t0,
+                h2 - q4 * s0 - 2.0 * q5 * t0,
+                q3,
+                q4,
+                q5,
+            ];
+            let conic = case % 5 != 0;
+            let fat_line = Fat::Line(Linear { c: l.map(GeoIv::pt) }, da);
+            let other = if conic {
+                Fat::Conic(Quadratic { c: q.map(GeoIv::pt) }, db)
+            } else {
+                Fat::Line(
+                    Linear {
+                        c: [q[0], q[1], q[2]].map(GeoIv::pt),
+                    },
+                    db,
+                )
+            };
+            let claim = proposed_and_verified(&[fat_line, other]);
+            let verifier = Verifier::new(&Linear { c: l.map(GeoIv::pt) }, da, &other);
+            let qs = if conic { q } else { [q[0], q[1], q[2], 0.0, 0.0, 0.0] };
+            let lv = |s: f64, t: f64| l[0] + l[1] * s + l[2] * t;
+            let qv = |s: f64, t: f64| qs[0] + qs[1] * s + qs[2] * t + qs[3] * s * s + qs[4] * s * t + qs[5] * t * t;
+            // Proven feasible, and the proven barycentric coordinates.
+            let proven = |s: f64, t: f64| -> Option<[Interval; 3]> {
+                let (si, ti) = (point(s), point(t));
+                let c = |x: f64| point(x);
+                let lx = c(l[0]) + c(l[1]) * si + c(l[2]) * ti;
+                let qx = c(qs[0])
+                    + c(qs[1]) * si
+                    + c(qs[2]) * ti
+                    + c(qs[3]) * si * si
+                    + c(qs[4]) * si * ti
+                    + c(qs[5]) * ti * ti;
+                let w = c(1.0) - si - ti;
+                let inside = |x: Interval, d: f64| x.inf() >= -d && x.sup() <= d;
+                (s >= 0.0 && t >= 0.0 && w.inf() >= 0.0 && inside(lx, da) && inside(qx, db)).then_some([si, ti, w])
+            };
+            let mut pts: Vec<(f64, f64)> = Vec::new();
+            // Zeros of `f` along `x ↦ point(x)`, x ∈ [0, 1], by scanning and bisection.
+            let mut zeros = |point_at: &dyn Fn(f64) -> Option<(f64, f64)>, f: &dyn Fn(f64, f64) -> f64| {
+                let n = 400;
+                let val = |x: f64| point_at(x).map(|(s, t)| f(s, t));
+                for i in 0..n {
+                    let (mut a, mut b) = (i as f64 / n as f64, (i + 1) as f64 / n as f64);
+                    let (Some(fa), Some(fb)) = (val(a), val(b)) else {
+                        continue;
+                    };
+                    if fa == 0.0 {
+                        pts.extend(point_at(a));
+                    }
+                    if fa.signum() * fb.signum() >= 0.0 {
+                        continue;
+                    }
+                    let sa = fa.signum();
+                    for _ in 0..60 {
+                        let m = 0.5 * (a + b);
+                        match val(m) {
+                            Some(v) if v.signum() == sa => a = m,
+                            Some(_) => b = m,
+                            None => break,
+                        }
+                    }
+                    pts.extend(point_at(a));
+                    pts.extend(point_at(b));
+                }
+            };
+            for i in 0..=40 {
+                let lam = da * (i as f64 / 20.0 - 1.0) * 0.999;
+                // The line L = λ as a graph over the coordinate with the larger slope.
+                let on_line = move |x: f64| {
+                    if l[2].abs() >= l[1].abs() {
+                        Some((x, (lam - l[0] - l[1] * x) / l[2]))
+                    } else {
+                        Some(((lam - l[0] - l[2] * x) / l[1], x))
+                    }
+                };
+                for level in [0.0, 0.999 * db, -0.999 * db] {
+                    zeros(&on_line, &|s, t| qv(s, t) - level);
+                }
+            }
+            let edges: [&dyn Fn(f64) -> Option<(f64, f64)>; 3] =
+                [&|x| Some((0.0, x)), &|x| Some((x, 0.0)), &|x| Some((x, 1.0 - x))];
+            for edge in edges {
+                for level in [0.999 * da, -0.999 * da] {
+                    zeros(edge, &|s, t| lv(s, t) - level);
+                }
+                for level in [0.0, 0.999 * db, -0.999 * db] {
+                    zeros(edge, &|s, t| qv(s, t) - level);
+                }
+            }
+            for i in 0..=60 {
+                for j in 0..=60 - i {
+                    pts.push((i as f64 / 60.0, j as f64 / 60.0));
+                }
+            }
+            match claim {
+                None => declined += 1,
+                Some(ClipBounds::Empty) => empty += 1,
+                Some(ClipBounds::Keep(_)) => kept += 1,
+            }
+            let feasible: Vec<[Interval; 3]> = pts.iter().filter_map(|&(s, t)| proven(s, t)).collect();
+            checked += feasible.len();
+            for bary in &feasible {
+                match claim {
+                    None => {}
+                    Some(ClipBounds::Empty) => panic!("case {case}: Empty, but {bary:?} is feasible"),
+                    Some(ClipBounds::Keep(m)) => {
+                        for k in 0..3 {
+                            assert!(bary[k].sup() >= m[k], "case {case}: {bary:?} is feasible, below {m:?}");
+                        }
+                    }
+                }
+            }
+            // The proofs themselves, on claims that are false as often as
+            // true: just below and above the smallest feasible coordinate
+            // found, and at random.
+            for k in 0..3 {
+                let low = feasible.iter().map(|b| b[k].inf()).fold(f64::INFINITY, f64::min);
+                let mut tries = vec![r(), r(), r()];
+                if low.is_finite() {
+                    tries.extend([1e-3, 1e-6, -1e-6, -1e-3, -0.1].map(|x| low * (1.0 + x)));
+                }
+                for m in tries.into_iter().filter(|m| *m > 0.0 && *m <= 1.0) {
+                    if verifier.sliver_free(k, m) {
+                        proofs += 1;
+                        for bary in &feasible {
+                            assert!(
+                                bary[k].sup() > m,
+                                "case {case}: sliver {k} ≤ {m} proven free, but {bary:?}"
+                            );
+                        }
+                    } else if feasible.iter().any(|b| b[k].sup() <= m) {
+                        refuted += 1;
+                    }
+                }
+            }
+        }
+        assert!(
+            kept > 120 && empty > 100 && checked > 20000 && proofs > 1000 && refuted > 1000,
+            "{kept} {empty} {declined} {checked} {proofs} {refuted}"
+        );
     }
 
     /// The float evaluation of the hull crossings in `bezier_bounds` stays a
