@@ -28,6 +28,13 @@
 //! `[0, 1]` — always valid, because feasible points have `s, t ∈ [0, 1]` —
 //! which only weakens the clip. If no candidate is possibly feasible, `R` is
 //! empty: the tri-box holds no root.
+//!
+//! # Float proposes, intervals verify
+//! Enclosing every candidate costs several times the float clip. So the
+//! rigorous kernel first takes the float clip's minima, widened by
+//! [`VERIFY_MARGIN`] of the kept size, and proves each removed sliver free of
+//! `R` (`Verifier::sliver_free`, a few dozen interval operations); only
+//! where such a proof fails are the candidate enclosures computed.
 
 use super::num::Geo;
 use crate::poly::{tri_indices, TriBall};
