@@ -70,13 +70,6 @@ impl<G: Geo> Linear<G> {
 }
 
 impl<S: Geo> Linear<S> {
-    /// The coefficients mapped by `f` (`None` if one maps to `None`).
-    fn mid(&self, f: impl Fn(S) -> Option<f64>) -> Option<Linear<f64>> {
-        Some(Linear {
-            c: [f(self.c[0])?, f(self.c[1])?, f(self.c[2])?],
-        })
-    }
-
     /// Value at `(s, t)`.
     pub fn eval(&self, s: S, t: S) -> S {
         self.c[0] + self.c[1] * s + self.c[2] * t
@@ -118,6 +111,13 @@ impl<S: Geo> Quadratic<S> {
         c[0] + s * (c[1] + c[3] * s + c[4] * t) + t * (c[2] + c[5] * t)
     }
 
+    /// `(∂Q/∂s, ∂Q/∂t)` at `(s, t)`.
+    pub fn gradient(&self, s: S, t: S) -> (S, S) {
+        let c = &self.c;
+        let two = S::pt(2.0);
+        (c[1] + two * c[3] * s + c[4] * t, c[2] + c[4] * s + two * c[5] * t)
+    }
+
     fn shifted(&self, d: f64) -> Self {
         let mut c = self.c;
         c[0] = c[0] - S::pt(d);
@@ -154,17 +154,22 @@ pub enum Fat<S> {
 }
 
 impl<S: Geo> Fat<S> {
-    /// The same fat curve with coefficients mapped by `f` (midpoints).
-    fn mid(&self, f: impl Fn(S) -> Option<f64>) -> Option<Fat<f64>> {
-        Some(match self {
-            Fat::Line(l, d) => Fat::Line(l.mid(f)?, *d),
-            Fat::Conic(q, d) => {
-                let mut c = [0.0; 6];
-                for (x, y) in c.iter_mut().zip(q.c) {
-                    *x = f(y)?;
+    /// The same fat curve with its coefficients' midpoints (the input of
+    /// the float proposal); `None` if one is not finite.
+    fn midpoints(&self) -> Option<Fat<f64>> {
+        fn mids<S: Geo, const N: usize>(c: [S; N]) -> Option<[f64; N]> {
+            let mut out = [0.0; N];
+            for (m, x) in out.iter_mut().zip(c) {
+                *m = 0.5 * (x.lower() + x.upper());
+                if !m.is_finite() {
+                    return None;
                 }
-                Fat::Conic(Quadratic { c }, *d)
             }
+            Some(out)
+        }
+        Some(match self {
+            Fat::Line(l, d) => Fat::Line(Linear { c: mids(l.c)? }, *d),
+            Fat::Conic(q, d) => Fat::Conic(Quadratic { c: mids(q.c)? }, *d),
         })
     }
 
@@ -298,17 +303,10 @@ fn proposed_and_verified<G: Geo>(fats: &[Fat<G>]) -> Option<ClipBounds> {
     let [Fat::Line(line, da), other] = fats else {
         return None;
     };
-    let mid = |x: G| {
-        let m = 0.5 * (x.lower() + x.upper());
-        m.is_finite().then_some(m)
-    };
-    let float = [Fat::Line(line.mid(mid)?, *da), other.mid(mid)?];
-    let proposal = clip_in::<f64>(&float);
-    let verifier = Verifier::new(line, *da, other);
-    match proposal {
-        ClipBounds::Empty => (0..3)
-            .any(|k| verifier.sliver_free(k, 1.0))
-            .then_some(ClipBounds::Empty),
+    let float = [fats[0].midpoints()?, other.midpoints()?];
+    // The slivers to prove free: the whole tri-box for `Empty`.
+    let (claim, slivers) = match clip_in::<f64>(&float) {
+        ClipBounds::Empty => (ClipBounds::Empty, [1.0; 3]),
         ClipBounds::Keep(m) => {
             let size = 1.0 - (m[0] + m[1] + m[2]);
             // Also NaN: no proposal.
@@ -316,19 +314,20 @@ fn proposed_and_verified<G: Geo>(fats: &[Fat<G>]) -> Option<ClipBounds> {
                 return None;
             }
             let margin = VERIFY_MARGIN * size + 1e-15;
-            let mut keep = [0.0; 3];
-            for k in 0..3 {
-                let mk = m[k] - margin;
-                if mk > 0.0 {
-                    if !verifier.sliver_free(k, mk) {
-                        return None;
-                    }
-                    keep[k] = mk;
-                }
-            }
-            Some(ClipBounds::Keep(keep))
+            let keep = m.map(|x| (x - margin).max(0.0));
+            (ClipBounds::Keep(keep), keep)
         }
+    };
+    if slivers.iter().all(|&m| m <= 0.0) {
+        return Some(claim);
     }
+    let verifier = Verifier::new(line, *da, other);
+    let proven = match claim {
+        // One free sliver that is the whole tri-box suffices.
+        ClipBounds::Empty => (0..3).any(|k| verifier.sliver_free(k, 1.0)),
+        ClipBounds::Keep(_) => (0..3).all(|k| slivers[k] <= 0.0 || verifier.sliver_free(k, slivers[k])),
+    };
+    proven.then_some(claim)
 }
 
 /// The data of [`Verifier::sliver_free`] shared by the three slivers of one
@@ -340,8 +339,8 @@ struct Verifier<G> {
     da: f64,
     /// `[−δ_a, δ_a]`.
     lambda: G,
-    /// `P`'s coefficients (the order of [`Quadratic`]).
-    q: [G; 6],
+    /// `P` (a line as a quadratic with zero second-order terms).
+    q: Quadratic<G>,
     db: f64,
     /// The strip's direction `v = (l2, −l1)`.
     v: (G, G),
@@ -361,6 +360,7 @@ impl<G: Geo> Verifier<G> {
             Fat::Line(l, db) => ([l.c[0], l.c[1], l.c[2], zero, zero, zero], *db),
             Fat::Conic(q, db) => (q.c, *db),
         };
+        let quadratic = Quadratic { c: q };
         let [_, l1, l2] = line.c;
         let v = (l2, -l1);
         let c4h = q[4] * G::pt(0.5);
@@ -369,7 +369,7 @@ impl<G: Geo> Verifier<G> {
             l: line.c,
             da,
             lambda: G::pt(-da).hull(G::pt(da)),
-            q,
+            q: quadratic,
             db,
             v,
             hv,
@@ -380,15 +380,13 @@ impl<G: Geo> Verifier<G> {
 
     /// `P` and `∇P` at `(s, t)`.
     fn jet(&self, (s, t): (G, G)) -> (G, G, G) {
-        let c = &self.q;
-        let two = G::pt(2.0);
-        let p = c[0] + s * (c[1] + c[3] * s + c[4] * t) + t * (c[2] + c[5] * t);
-        (p, c[1] + two * c[3] * s + c[4] * t, c[2] + c[4] * s + two * c[5] * t)
+        let (gs, gt) = self.q.gradient(s, t);
+        (self.q.eval(s, t), gs, gt)
     }
 
     /// `aᵀ (∇²P / 2) b`.
     fn half_hessian(&self, a: (G, G), b: (G, G)) -> G {
-        let c = &self.q;
+        let c = &self.q.c;
         c[3] * a.0 * b.0 + c[4] * G::pt(0.5) * (a.0 * b.1 + a.1 * b.0) + c[5] * a.1 * b.1
     }
 
@@ -423,10 +421,18 @@ impl<G: Geo> Verifier<G> {
             1 => (a0, a2, a1),
             _ => (a0 + a2, -a2, a1 - a2),
         };
-        let at = |sig: G, tau: G| match k {
-            0 => (sig, tau),
-            1 => (tau, sig),
-            _ => (tau, one - sig - tau),
+        let lin = |a: G, b: G| match k {
+            0 => (a, b),
+            1 => (b, a),
+            _ => (b, -a - b),
+        };
+        let at = |sig: G, tau: G| {
+            let (s, t) = lin(sig, tau);
+            if k == 2 {
+                (s, one + t)
+            } else {
+                (s, t)
+            }
         };
         let sig_m = G::pt(m);
         let da = self.da;
@@ -507,8 +513,7 @@ impl<G: Geo> Verifier<G> {
             let Some(range) = range else { continue };
             let mid = G::pt(0.5 * (range.lower() + range.upper()));
             // x = x0 + μ f with f the edge's direction per unit σ.
-            let f = at(one, dtau);
-            let f = if k == 2 { (f.0, f.1 - one) } else { f };
+            let f = lin(one, dtau);
             let (p, gs, gt) = self.jet(at(mid, tau0 + dtau * mid));
             let piece = Piece {
                 p,
