@@ -33,14 +33,17 @@
 //! Enclosing every candidate costs several times the float clip. So the
 //! rigorous kernel first takes the float clip's minima, widened by
 //! [`VERIFY_MARGIN`] of the kept size, and proves each removed sliver free of
-//! `R` (`Verifier::sliver_free`, a few dozen interval operations); only
-//! where such a proof fails are the candidate enclosures computed.
+//! `R` (`Verifier::sliver_free`, a few dozen interval operations: the fat
+//! line's strip swept along its lines, or across them when it is parallel
+//! to the sliver's side); only where such a proof fails are the candidate
+//! enclosures computed.
 
 use super::num::Geo;
 use crate::poly::{tri_indices, TriBall};
 use crate::scalar::iv;
 use crate::scalar::Sign;
 use smallvec::SmallVec;
+use std::cell::Cell;
 
 /// `a0 + a1 s + a2 t`.
 #[derive(Clone, Copy, Debug)]
@@ -351,6 +354,8 @@ struct Verifier<G> {
     /// `wᵀ (∇²P / 2) w` for the directions `w` along `u = const`
     /// (`(0, 1)`), `v = const` (`(1, 0)`) and `w = const` (`(1, −1)`).
     hw: [G; 3],
+    /// What is left of [`CLEAR_BUDGET`] in the current proof.
+    budget: Cell<u32>,
 }
 
 impl<G: Geo> Verifier<G> {
@@ -375,6 +380,7 @@ impl<G: Geo> Verifier<G> {
             hv,
             vhv: v.0 * hv.0 + v.1 * hv.1,
             hw: [q[5], q[3], q[3] - q[4] + q[5]],
+            budget: Cell::new(CLEAR_BUDGET),
         }
     }
 
@@ -411,29 +417,12 @@ impl<G: Geo> Verifier<G> {
     /// `x0 + μ f`; `E` and `D` are enclosed over it by their (exact) Taylor
     /// expansions at `x0`, and [`bounded_away`] proves `E − D h + C h² > δ_b`
     /// (or `< −δ_b`) on `[0, σ_max]`. Then no point of `Ω` has `|P| ≤ δ_b`.
+    /// A strip (nearly) parallel to the end segment, `lτ` not proven
+    /// non-zero, is swept along `dτ/dh = 1` instead when `lσ ≠ 0`
+    /// ([`Verifier::swept_along_tau`]).
     fn sliver_free(&self, k: usize, m: f64) -> bool {
-        let (zero, one) = (G::pt(0.0), G::pt(1.0));
-        let [a0, a1, a2] = self.l;
-        // L's coefficients in the frame, and the frame's map to (s, t):
-        // k = 0: (σ, τ); k = 1: (τ, σ); k = 2: (τ, 1 − σ − τ).
-        let (l0, ls, lt) = match k {
-            0 => (a0, a1, a2),
-            1 => (a0, a2, a1),
-            _ => (a0 + a2, -a2, a1 - a2),
-        };
-        let lin = |a: G, b: G| match k {
-            0 => (a, b),
-            1 => (b, a),
-            _ => (b, -a - b),
-        };
-        let at = |sig: G, tau: G| {
-            let (s, t) = lin(sig, tau);
-            if k == 2 {
-                (s, one + t)
-            } else {
-                (s, t)
-            }
-        };
+        let one = G::pt(1.0);
+        let (l0, ls, lt) = self.frame_line(k);
         let sig_m = G::pt(m);
         let da = self.da;
         let base = l0 + ls * sig_m;
@@ -442,9 +431,33 @@ impl<G: Geo> Verifier<G> {
         if corners.iter().all(|x| x.lower() > da) || corners.iter().all(|x| x.upper() < -da) {
             return true;
         }
-        if !lt.nonzero() {
-            return false;
+        let frame = (l0, ls, lt);
+        self.budget.set(CLEAR_BUDGET);
+        if lt.nonzero() {
+            self.swept_along_sigma(k, m, frame)
+        } else {
+            self.swept_across(k, m, frame) || (ls.nonzero() && self.swept_along_tau(k, m, frame))
         }
+    }
+
+    /// `L = l0' + lσ σ + lτ τ` in the frame of sliver `k` (see
+    /// [`frame_point`]): `(l0', lσ, lτ)`.
+    fn frame_line(&self, k: usize) -> (G, G, G) {
+        let [a0, a1, a2] = self.l;
+        match k {
+            0 => (a0, a1, a2),
+            1 => (a0, a2, a1),
+            _ => (a0 + a2, -a2, a1 - a2),
+        }
+    }
+
+    /// [`Verifier::sliver_free`] with `lτ ≠ 0`: the strip's lines run along
+    /// `d` with `dσ/dh = 1`, so `h ≤ σ(x)`.
+    fn swept_along_sigma(&self, k: usize, m: f64, (l0, ls, lt): (G, G, G)) -> bool {
+        let (zero, one) = (G::pt(0.0), G::pt(1.0));
+        let sig_m = G::pt(m);
+        let base = l0 + ls * sig_m;
+        let far = base + lt * (one - sig_m);
         let r = one / lt;
         let r2 = square(r);
         // d = v / σ(v) with σ(v) = lτ, except −lτ for k = 1.
@@ -457,7 +470,7 @@ impl<G: Geo> Verifier<G> {
         if let Some(lam) = clamp_hull(base.hull(far), self.lambda) {
             let lc = G::pt(0.5 * (lam.lower() + lam.upper()));
             let tau0 = (lc - base) * r;
-            let (p, gs, gt) = self.jet(at(sig_m, tau0));
+            let (p, gs, gt) = self.jet(frame_point(k, sig_m, tau0));
             let (gw, hwv) = match k {
                 0 => (gt, self.hv.1),
                 1 => (gs, self.hv.0),
@@ -487,54 +500,200 @@ impl<G: Geo> Verifier<G> {
                 }
                 G::pt(h.max(0.0))
             };
-            if !piece.clear(lam - lc, &h_max, SPLITS) {
+            if !piece.clear(lam - lc, &h_max, SPLITS, &self.budget) {
                 return false;
             }
         }
         // The edges τ = 0 (an exit where τ falls along d: lσ/lτ > 0) and
-        // σ + τ = 1 (where σ + τ grows: 1 − lσ/lτ > 0), as τ = τ0 + dτ σ,
-        // with L = c0 + c1 σ on them.
-        let edges = [
-            (slope.lower() < 0.0, l0, ls, zero, zero),
-            ((one + slope).upper() > 0.0, l0 + lt, ls - lt, one, -one),
-        ];
+        // σ + τ = 1 (where σ + τ grows: 1 − lσ/lτ > 0), parametrized by σ
+        // ∈ [0, m], which bounds h.
         let dir = (sign(self.v.0 * r), sign(self.v.1 * r));
-        for (exit, c0, c1, tau0, dtau) in edges {
+        let by_sigma = |sig: G| G::pt(sig.upper().max(0.0));
+        let range = zero.hull(sig_m);
+        (slope.lower() >= 0.0 || self.edge_clear(k, ((zero, zero), (one, zero)), (l0, ls), range, dir, c, &by_sigma))
+            && ((one + slope).upper() <= 0.0
+                || self.edge_clear(
+                    k,
+                    ((zero, one), (one, -one)),
+                    (l0 + lt, ls - lt),
+                    range,
+                    dir,
+                    c,
+                    &by_sigma,
+                ))
+    }
+
+    /// [`Verifier::sliver_free`] with `lσ ≠ 0` (for a strip parallel, or
+    /// nearly, to the end segment, where `lτ` is not proven non-zero): the
+    /// strip's lines run along `d = (e, 1)` in `(σ, τ)`, `e = −lτ/lσ`, so
+    /// `h ≤ τ(x)`. The exits are the edge `σ + τ = 1` (where `1 + e > 0`),
+    /// `σ = 0` (where `e < 0`) and the end segment `σ = m` (where `e > 0`);
+    /// `τ` grows along `d`, so `τ = 0` is never one.
+    fn swept_along_tau(&self, k: usize, m: f64, (l0, ls, lt): (G, G, G)) -> bool {
+        let (zero, one) = (G::pt(0.0), G::pt(1.0));
+        let sig_m = G::pt(m);
+        let e = -lt / ls;
+        let dir = frame_dir(k, e, one);
+        let c = self.half_hessian(dir, dir);
+        let by_tau = |tau: G| G::pt(tau.upper().max(0.0));
+        let by_sigma = |sig: G| G::pt((one - sig).upper().max(0.0));
+        let up = (zero, one);
+        ((one + e).upper() <= 0.0
+            || self.edge_clear(
+                k,
+                ((zero, one), (one, -one)),
+                (l0 + lt, ls - lt),
+                zero.hull(sig_m),
+                dir,
+                c,
+                &by_sigma,
+            ))
+            && (e.lower() >= 0.0 || self.edge_clear(k, ((zero, zero), up), (l0, lt), zero.hull(one), dir, c, &by_tau))
+            && (e.upper() <= 0.0
+                || self.edge_clear(
+                    k,
+                    ((sig_m, zero), up),
+                    (l0 + ls * sig_m, lt),
+                    zero.hull(one - sig_m),
+                    dir,
+                    c,
+                    &by_tau,
+                ))
+    }
+
+    /// [`Verifier::sliver_free`] across the strip, for one (nearly) parallel
+    /// to the end segment (`lτ` not proven non-zero), where the strip's own
+    /// lines run along the end segment and `P`'s extremum on them lies
+    /// inside the sliver: `d = (1, 0)` in `(σ, τ)`, so `h ≤ σ(x)`. The path
+    /// now leaves the strip too: the exits are the end segment, the edge
+    /// `σ + τ = 1` and the strip's side `L = ±δ_a` where `±lσ > 0`, taken
+    /// (for `lσ ≠ 0`) as `σ = (±δ_a − l0' − lτ τ) / lσ`, `τ ∈ [0, 1 − σ]`
+    /// (a superset: points beyond the sliver only add checks); with `lσ`
+    /// not proven non-zero, no proof.
+    fn swept_across(&self, k: usize, m: f64, (l0, ls, lt): (G, G, G)) -> bool {
+        let (zero, one) = (G::pt(0.0), G::pt(1.0));
+        let sig_m = G::pt(m);
+        let dir = frame_dir(k, one, zero);
+        let c = self.half_hessian(dir, dir);
+        let by_sigma = |sig: G| G::pt(sig.upper().max(0.0));
+        let by_m = |_: G| sig_m;
+        let up = (zero, one);
+        if !ls.nonzero()
+            || !self.edge_clear(
+                k,
+                ((sig_m, zero), up),
+                (l0 + ls * sig_m, lt),
+                zero.hull(one - sig_m),
+                dir,
+                c,
+                &by_m,
+            )
+            || !self.edge_clear(
+                k,
+                ((zero, one), (one, -one)),
+                (l0 + lt, ls - lt),
+                zero.hull(sig_m),
+                dir,
+                c,
+                &by_sigma,
+            )
+        {
+            return false;
+        }
+        let r = one / ls;
+        let f = (-lt * r, one);
+        for lam in [self.da, -self.da] {
+            // The side's outward normal is ±∇L: an exit where ±lσ > 0.
+            let exit = if lam > 0.0 { ls.upper() > 0.0 } else { ls.lower() < 0.0 };
             if !exit {
                 continue;
             }
-            // σ ∈ [0, m] with |c0 + c1 σ| ≤ δ_a.
-            let range = if c1.nonzero() {
-                let (x, y) = ((G::pt(-da) - c0) / c1, (G::pt(da) - c0) / c1);
-                clamp_hull(x.hull(y), zero.hull(sig_m))
-            } else {
-                Some(zero.hull(sig_m))
-            };
-            let Some(range) = range else { continue };
-            let mid = G::pt(0.5 * (range.lower() + range.upper()));
-            // x = x0 + μ f with f the edge's direction per unit σ.
-            let f = lin(one, dtau);
-            let (p, gs, gt) = self.jet(at(mid, tau0 + dtau * mid));
-            let piece = Piece {
-                p,
-                b: gs * f.0 + gt * f.1,
-                a: self.half_hessian(f, f),
-                d0: gs * dir.0 + gt * dir.1,
-                d1: G::pt(2.0) * self.half_hessian(f, dir),
-                c,
-                db: self.db,
-            };
-            // σ(x) = mid + μ bounds h.
-            if !piece.clear(range - mid, &|mu: G| G::pt((mid + mu).upper()), SPLITS) {
+            // σ at τ = 0, and its range over τ ∈ [0, 1].
+            let s0 = (G::pt(lam) - l0) * r;
+            let sig = s0.hull(s0 + f.0);
+            if sig.lower() > m || sig.upper() < 0.0 {
+                continue;
+            }
+            let tau = zero.hull(G::pt((one - G::pt(sig.lower().max(0.0))).upper()));
+            let h_of = |t: G| G::pt((s0 + f.0 * t).upper().max(0.0));
+            if !self.edge_clear(k, ((s0, zero), f), (G::pt(lam), zero), tau, dir, c, &h_of) {
                 return false;
             }
         }
         true
     }
+
+    /// Proves `|P(x − h d)| > δ_b` (one sign) for the points `x = o + x f` of
+    /// an edge (`(o, f)` in the frame, the parameter `x` in `range`) where
+    /// `|L| ≤ δ_a`, `L = c0 + c1 x` along it, and `0 ≤ h ≤ h_of(x)`; `d` is
+    /// `dir` in `(s, t)`, `c = dᵀ(∇²P/2)d`. The piece is expanded at the
+    /// middle of its parameter range (see [`Piece`]).
+    #[allow(clippy::too_many_arguments)]
+    fn edge_clear(
+        &self,
+        k: usize,
+        ((o_s, o_t), f): ((G, G), (G, G)),
+        (c0, c1): (G, G),
+        range: G,
+        dir: (G, G),
+        c: G,
+        h_of: &impl Fn(G) -> G,
+    ) -> bool {
+        let da = self.da;
+        let range = if c1.nonzero() {
+            let (x, y) = ((G::pt(-da) - c0) / c1, (G::pt(da) - c0) / c1);
+            clamp_hull(x.hull(y), range)
+        } else {
+            let l = c0 + c1 * range;
+            (l.lower() <= da && l.upper() >= -da).then_some(range)
+        };
+        let Some(range) = range else { return true };
+        let mid = G::pt(0.5 * (range.lower() + range.upper()));
+        let f_st = frame_dir(k, f.0, f.1);
+        let (p, gs, gt) = self.jet(frame_point(k, o_s + mid * f.0, o_t + mid * f.1));
+        let piece = Piece {
+            p,
+            b: gs * f_st.0 + gt * f_st.1,
+            a: self.half_hessian(f_st, f_st),
+            d0: gs * dir.0 + gt * dir.1,
+            d1: G::pt(2.0) * self.half_hessian(f_st, dir),
+            c,
+            db: self.db,
+        };
+        piece.clear(range - mid, &|mu: G| h_of(mid + mu), SPLITS, &self.budget)
+    }
+}
+
+/// The sliver frame's point `(σ, τ)` in `(s, t)`: `σ` is the barycentric
+/// coordinate `k` of the tri-box and `τ` the next one, `v` for `k = 0`, else
+/// `u`: `k = 0`: `(σ, τ)`; `k = 1`: `(τ, σ)`; `k = 2`: `(τ, 1 − σ − τ)`.
+fn frame_point<G: Geo>(k: usize, sig: G, tau: G) -> (G, G) {
+    let (s, t) = frame_dir(k, sig, tau);
+    if k == 2 {
+        (s, G::pt(1.0) + t)
+    } else {
+        (s, t)
+    }
+}
+
+/// The linear part of [`frame_point`]: a direction `(σ, τ)` in `(s, t)`.
+fn frame_dir<G: Geo>(k: usize, a: G, b: G) -> (G, G) {
+    match k {
+        0 => (a, b),
+        1 => (b, a),
+        _ => (b, -a - b),
+    }
 }
 
 /// How often [`Piece::clear`] may halve a piece that fails as a whole.
-const SPLITS: u32 = 2;
+const SPLITS: u32 = 12;
+
+/// How many halvings [`Piece::clear`] may make in one
+/// [`Verifier::sliver_free`]: they go deep only next to the point that makes
+/// a proof tight (the minimum of a conic touching the sliver's side, found
+/// by the float clip to ~2⁻²⁰ of the tri-box), so a failing proof stays
+/// cheaper than the enclosure clip it falls back to.
+const CLEAR_BUDGET: u32 = 48;
 
 /// `P(x0 + μ f − h d) = E(μ) − D(μ) h + C h²` on an exit piece of
 /// [`Verifier::sliver_free`]: exactly `E = p + b μ + a μ²`, `D = d0 + d1 μ`.
@@ -550,10 +709,11 @@ struct Piece<G> {
 
 impl<G: Geo> Piece<G> {
     /// Proves `|P| > δ_b` (one sign) for `μ ∈ mu`, `0 ≤ h ≤ h_max(μ-range)`;
-    /// where the whole piece fails, its halves are tried (`splits` levels):
+    /// where the whole piece fails, its halves are tried (`splits` levels,
+    /// each halving taken from `budget`):
     /// [`bounded_away`] bounds `E` and `D` separately, which loses the
     /// coupling through `μ` on a long piece.
-    fn clear(&self, mu: G, h_max: &impl Fn(G) -> G, splits: u32) -> bool {
+    fn clear(&self, mu: G, h_max: &impl Fn(G) -> G, splits: u32, budget: &Cell<u32>) -> bool {
         let d = self.d0 + self.d1 * mu;
         let h = h_max(mu);
         let e = self.p + mu * self.b + square(mu) * self.a;
@@ -562,16 +722,17 @@ impl<G: Geo> Piece<G> {
         {
             return true;
         }
-        if splits == 0 {
+        if splits == 0 || budget.get() == 0 {
             return false;
         }
+        budget.set(budget.get() - 1);
         let (lo, hi) = (mu.lower(), mu.upper());
         let mid = 0.5 * (lo + hi);
         if !(lo < mid && mid < hi) {
             return false;
         }
-        self.clear(G::pt(lo).hull(G::pt(mid)), h_max, splits - 1)
-            && self.clear(G::pt(mid).hull(G::pt(hi)), h_max, splits - 1)
+        self.clear(G::pt(lo).hull(G::pt(mid)), h_max, splits - 1, budget)
+            && self.clear(G::pt(mid).hull(G::pt(hi)), h_max, splits - 1, budget)
     }
 }
 
@@ -1291,13 +1452,21 @@ mod tests {
     fn verified_clips_hold_every_feasible_point() {
         let mut rng = crate::rng::Rng(0x5eed_c11b);
         let (mut kept, mut empty, mut declined, mut checked) = (0, 0, 0, 0);
-        let (mut proofs, mut refuted) = (0, 0);
+        let (mut proofs, mut refuted) = ([0; 4], 0);
         for case in 0..500 {
             let mut r = || rng.next_f64();
             let (s0, t0) = (1.4 * r() - 0.2, 1.4 * r() - 0.2);
             let log_uniform = |x: f64, lo: f64, hi: f64| (lo.ln() + x * (hi.ln() - lo.ln())).exp();
             let (da, db) = (log_uniform(r(), 1e-9, 0.3), log_uniform(r(), 1e-9, 0.3));
-            let (g1, g2) = (2.0 * r() - 1.0, 2.0 * r() - 1.0);
+            let (mut g1, mut g2) = (2.0 * r() - 1.0, 2.0 * r() - 1.0);
+            // Strips parallel to a side of the tri-box (lτ = 0 in frame k = 0,
+            // 1 or 2), which symmetric systems produce.
+            match case % 7 {
+                1 => g2 = 0.0,
+                2 => g1 = 0.0,
+                3 => g2 = g1,
+                _ => {}
+            }
             let l = [-(g1 * s0 + g2 * t0) + 0.1 * da * (2.0 * r() - 1.0), g1, g2];
             let (h1, h2) = (2.0 * r() - 1.0, 2.0 * r() - 1.0);
             let curv = [0.0, 0.3, 1.0, 4.0][case % 4];
@@ -1316,7 +1485,16 @@ mod tests {
                 q5,
             ];
             let conic = case % 5 != 0;
-            let fat_line = Fat::Line(Linear { c: l.map(GeoIv::pt) }, da);
+            // Two lines in three with coefficient enclosures 2e-12 wide (as
+            // the solver's are, so a zero coefficient is not proven non-zero)
+            // or 0.06 wide (so strips with slopes of both signs use every
+            // exit piece); the strip is then the union over the members, and
+            // the points below are taken for the corner members too.
+            let lw = [0.0, 1e-12, 0.03][case % 3];
+            let line = Linear {
+                c: l.map(|x| GeoIv::pt(x - lw).hull(GeoIv::pt(x + lw))),
+            };
+            let fat_line = Fat::Line(line, da);
             let other = if conic {
                 Fat::Conic(Quadratic { c: q.map(GeoIv::pt) }, db)
             } else {
@@ -1328,15 +1506,25 @@ mod tests {
                 )
             };
             let claim = proposed_and_verified(&[fat_line, other]);
-            let verifier = Verifier::new(&Linear { c: l.map(GeoIv::pt) }, da, &other);
+            let verifier = Verifier::new(&line, da, &other);
             let qs = if conic { q } else { [q[0], q[1], q[2], 0.0, 0.0, 0.0] };
-            let lv = |s: f64, t: f64| l[0] + l[1] * s + l[2] * t;
+            let members: Vec<[f64; 3]> = if lw > 0.0 {
+                (0..8)
+                    .map(|b| [0, 1, 2].map(|i| l[i] + if b >> i & 1 == 1 { lw } else { -lw }))
+                    .chain([l])
+                    .collect()
+            } else {
+                vec![l]
+            };
             let qv = |s: f64, t: f64| qs[0] + qs[1] * s + qs[2] * t + qs[3] * s * s + qs[4] * s * t + qs[5] * t * t;
             // Proven feasible, and the proven barycentric coordinates.
             let proven = |s: f64, t: f64| -> Option<[Interval; 3]> {
                 let (si, ti) = (point(s), point(t));
                 let c = |x: f64| point(x);
-                let lx = c(l[0]) + c(l[1]) * si + c(l[2]) * ti;
+                let in_strip = members.iter().any(|l| {
+                    let lx = c(l[0]) + c(l[1]) * si + c(l[2]) * ti;
+                    lx.inf() >= -da && lx.sup() <= da
+                });
                 let qx = c(qs[0])
                     + c(qs[1]) * si
                     + c(qs[2]) * ti
@@ -1345,7 +1533,7 @@ mod tests {
                     + c(qs[5]) * ti * ti;
                 let w = c(1.0) - si - ti;
                 let inside = |x: Interval, d: f64| x.inf() >= -d && x.sup() <= d;
-                (s >= 0.0 && t >= 0.0 && w.inf() >= 0.0 && inside(lx, da) && inside(qx, db)).then_some([si, ti, w])
+                (s >= 0.0 && t >= 0.0 && w.inf() >= 0.0 && in_strip && inside(qx, db)).then_some([si, ti, w])
             };
             let mut pts: Vec<(f64, f64)> = Vec::new();
             // Zeros of `f` along `x ↦ point(x)`, x ∈ [0, 1], by scanning and bisection.
@@ -1376,25 +1564,29 @@ mod tests {
                     pts.extend(point_at(b));
                 }
             };
-            for i in 0..=40 {
-                let lam = da * (i as f64 / 20.0 - 1.0) * 0.999;
-                // The line L = λ as a graph over the coordinate with the larger slope.
-                let on_line = move |x: f64| {
-                    if l[2].abs() >= l[1].abs() {
-                        Some((x, (lam - l[0] - l[1] * x) / l[2]))
-                    } else {
-                        Some(((lam - l[0] - l[2] * x) / l[1], x))
+            for &l in &members {
+                for i in 0..=40 {
+                    let lam = da * (i as f64 / 20.0 - 1.0) * 0.999;
+                    // The line L = λ as a graph over the coordinate with the larger slope.
+                    let on_line = move |x: f64| {
+                        if l[2].abs() >= l[1].abs() {
+                            Some((x, (lam - l[0] - l[1] * x) / l[2]))
+                        } else {
+                            Some(((lam - l[0] - l[2] * x) / l[1], x))
+                        }
+                    };
+                    for level in [0.0, 0.999 * db, -0.999 * db] {
+                        zeros(&on_line, &|s, t| qv(s, t) - level);
                     }
-                };
-                for level in [0.0, 0.999 * db, -0.999 * db] {
-                    zeros(&on_line, &|s, t| qv(s, t) - level);
                 }
             }
             let edges: [&dyn Fn(f64) -> Option<(f64, f64)>; 3] =
                 [&|x| Some((0.0, x)), &|x| Some((x, 0.0)), &|x| Some((x, 1.0 - x))];
             for edge in edges {
-                for level in [0.999 * da, -0.999 * da] {
-                    zeros(edge, &|s, t| lv(s, t) - level);
+                for l in &members {
+                    for level in [0.999 * da, -0.999 * da] {
+                        zeros(edge, &|s, t| l[0] + l[1] * s + l[2] * t - level);
+                    }
                 }
                 for level in [0.0, 0.999 * db, -0.999 * db] {
                     zeros(edge, &|s, t| qv(s, t) - level);
@@ -1428,28 +1620,52 @@ mod tests {
             // found, and at random.
             for k in 0..3 {
                 let low = feasible.iter().map(|b| b[k].inf()).fold(f64::INFINITY, f64::min);
-                let mut tries = vec![r(), r(), r()];
+                let mut tries: Vec<f64> = (0..8).map(|_| r()).collect();
                 if low.is_finite() {
                     tries.extend([1e-3, 1e-6, -1e-6, -1e-3, -0.1].map(|x| low * (1.0 + x)));
                 }
                 for m in tries.into_iter().filter(|m| *m > 0.0 && *m <= 1.0) {
-                    if verifier.sliver_free(k, m) {
-                        proofs += 1;
-                        for bary in &feasible {
-                            assert!(
-                                bary[k].sup() > m,
-                                "case {case}: sliver {k} ≤ {m} proven free, but {bary:?}"
-                            );
+                    // The proof, and each sweep on its own (either is valid
+                    // wherever its coefficient is non-zero).
+                    let frame = verifier.frame_line(k);
+                    let (_, ls, lt) = frame;
+                    let fresh = || verifier.budget.set(CLEAR_BUDGET);
+                    let sweeps = [
+                        Some(verifier.sliver_free(k, m)),
+                        lt.nonzero().then(|| {
+                            fresh();
+                            verifier.swept_along_sigma(k, m, frame)
+                        }),
+                        ls.nonzero().then(|| {
+                            fresh();
+                            verifier.swept_along_tau(k, m, frame)
+                        }),
+                        ls.nonzero().then(|| {
+                            fresh();
+                            verifier.swept_across(k, m, frame)
+                        }),
+                    ];
+                    for (how, proven) in sweeps.into_iter().enumerate() {
+                        match proven {
+                            Some(true) => {
+                                proofs[how] += 1;
+                                for bary in &feasible {
+                                    assert!(
+                                        bary[k].sup() > m,
+                                        "case {case}: sliver {k} ≤ {m} proven free ({how}), but {bary:?}"
+                                    );
+                                }
+                            }
+                            Some(false) if how == 0 && feasible.iter().any(|b| b[k].sup() <= m) => refuted += 1,
+                            _ => {}
                         }
-                    } else if feasible.iter().any(|b| b[k].sup() <= m) {
-                        refuted += 1;
                     }
                 }
             }
         }
         assert!(
-            kept > 120 && empty > 100 && checked > 20000 && proofs > 1000 && refuted > 1000,
-            "{kept} {empty} {declined} {checked} {proofs} {refuted}"
+            kept > 100 && empty > 100 && checked > 20000 && proofs.iter().all(|&p| p > 1000) && refuted > 1000,
+            "{kept} {empty} {declined} {checked} {proofs:?} {refuted}"
         );
     }
 
