@@ -7,8 +7,8 @@
 //! produces are one level deeper. Check-sign (§2.3.4) discards a tri-box when
 //! every coefficient of `f` or of `g` on it has one strict sign.
 
-use super::fatcurve::{intersect_bounds, ClipBounds};
-use super::method::{clip_bounds, Method};
+use super::fatcurve::ClipBounds;
+use super::method::{clip_bounds, clip_bounds_swapped, Method};
 use super::num::Geo;
 use super::tribox::TriBox;
 use crate::poly::dyadic::subdivide_dyadic;
@@ -641,17 +641,15 @@ fn step<G: Geo>(cx: &mut Ctx, mut item: Leaf, stack: &mut Vec<Leaf>, probe: &mut
         return;
     }
     let incenter = item.tb.incenter_bary();
-    let mut bounds = clip_bounds::<G>(limits.method, &item.fa, &item.fb, incenter);
-    if limits.swap_roles && matches!(limits.method, Method::Hc | Method::HcNoPre) {
-        if let ClipBounds::Keep(m) = bounds {
-            // The kept tri-box is similar to this one with ratio 1 − Σ mins.
-            if 1.0 - m.iter().sum::<f64>() > 0.5 {
-                cx.out.counters.role_swaps += 1;
-                let swapped = clip_bounds::<G>(limits.method, &item.fb, &item.fa, incenter);
-                bounds = intersect_bounds(bounds, swapped, G::RIGOROUS);
-            }
-        }
-    }
+    let bounds = if limits.swap_roles && matches!(limits.method, Method::Hc | Method::HcNoPre) {
+        // Where the clip keeps more than half, the clip with f and g swapped
+        // as well (its fat line is g's), intersected.
+        let (bounds, swapped) = clip_bounds_swapped::<G>(limits.method, &item.fa, &item.fb, incenter);
+        cx.out.counters.role_swaps += usize::from(swapped);
+        bounds
+    } else {
+        clip_bounds::<G>(limits.method, &item.fa, &item.fb, incenter)
+    };
     let mins = match bounds {
         ClipBounds::Empty => {
             cx.out.counters.clip_exclusions += 1;

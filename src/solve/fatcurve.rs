@@ -303,13 +303,33 @@ pub const VERIFY_MARGIN: f64 = 1.0 / (1u64 << 20) as f64;
 /// The float clip only chooses which `m_k` to try. The first fat curve must
 /// be a line (it is for every fat-curve method: `f^α` or `f̂`).
 fn proposed_and_verified<G: Geo>(fats: &[Fat<G>]) -> Option<ClipBounds> {
-    let [Fat::Line(line, da), other] = fats else {
-        return None;
+    verified(fats, float_claim(fats)?)
+}
+
+/// `claim` if [`Verifier::sliver_free`] proves it for `fats` (see
+/// [`proposed_and_verified`]).
+fn verified<G: Geo>(fats: &[Fat<G>], claim: ClipBounds) -> Option<ClipBounds> {
+    let bounds = claim_bounds(claim);
+    if bounds.iter().all(|&m| m <= 0.0) {
+        return Some(claim);
+    }
+    let verifier = Verifier::of(fats)?;
+    let proven = match claim {
+        // One free sliver that is the whole tri-box suffices.
+        ClipBounds::Empty => (0..3).any(|k| verifier.sliver_free(k, 1.0)),
+        ClipBounds::Keep(_) => (0..3).all(|k| bounds[k] <= 0.0 || verifier.sliver_free(k, bounds[k])),
     };
-    let float = [fats[0].midpoints()?, other.midpoints()?];
-    // The slivers to prove free: the whole tri-box for `Empty`.
-    let (claim, slivers) = match clip_in::<f64>(&float) {
-        ClipBounds::Empty => (ClipBounds::Empty, [1.0; 3]),
+    proven.then_some(claim)
+}
+
+/// The float kernel's clip of `fats` (on their midpoints), widened by
+/// [`VERIFY_MARGIN`] of the kept size: the claim a proof is to establish.
+/// `None` when the midpoints are not finite or the float clip keeps nothing
+/// measurable.
+fn float_claim<G: Geo>(fats: &[Fat<G>]) -> Option<ClipBounds> {
+    let float: SmallVec<[Fat<f64>; 2]> = fats.iter().map(Fat::midpoints).collect::<Option<_>>()?;
+    match clip_in::<f64>(&float) {
+        ClipBounds::Empty => Some(ClipBounds::Empty),
         ClipBounds::Keep(m) => {
             let size = 1.0 - (m[0] + m[1] + m[2]);
             // Also NaN: no proposal.
@@ -317,20 +337,95 @@ fn proposed_and_verified<G: Geo>(fats: &[Fat<G>]) -> Option<ClipBounds> {
                 return None;
             }
             let margin = VERIFY_MARGIN * size + 1e-15;
-            let keep = m.map(|x| (x - margin).max(0.0));
-            (ClipBounds::Keep(keep), keep)
+            Some(ClipBounds::Keep(m.map(|x| (x - margin).max(0.0))))
         }
-    };
-    if slivers.iter().all(|&m| m <= 0.0) {
-        return Some(claim);
     }
-    let verifier = Verifier::new(line, *da, other);
-    let proven = match claim {
-        // One free sliver that is the whole tri-box suffices.
-        ClipBounds::Empty => (0..3).any(|k| verifier.sliver_free(k, 1.0)),
-        ClipBounds::Keep(_) => (0..3).all(|k| slivers[k] <= 0.0 || verifier.sliver_free(k, slivers[k])),
+}
+
+/// The slivers a claim removes: `{σ_k ≤ m_k}`, the whole tri-box (`m = 1`)
+/// for `Empty`.
+fn claim_bounds(claim: ClipBounds) -> [f64; 3] {
+    match claim {
+        ClipBounds::Empty => [1.0; 3],
+        ClipBounds::Keep(m) => m,
+    }
+}
+
+/// The kept tri-box is more than half as wide as the clipped one (it is
+/// similar to it with ratio `1 − Σ m`).
+pub fn keeps_over_half(bounds: ClipBounds) -> bool {
+    matches!(bounds, ClipBounds::Keep(m) if 1.0 - m.iter().sum::<f64>() > 0.5)
+}
+
+/// [`clip_against_fat_curves`] of `first`, and where it keeps more than half
+/// of the tri-box ([`keeps_over_half`]) also of `second()` (the same system
+/// with the roles of `f` and `g` swapped), intersected; the flag says whether
+/// `second` was used.
+///
+/// In a rigorous kernel the two float claims are combined first and each
+/// side is proven once, by the fat-curve pair whose claim sets it (the other
+/// pair's smaller bound is the second try): a root lies in both pairs' fat
+/// regions, so a sliver free of either pair's region holds no root. Where
+/// both proofs of a side fail, both pairs fall back to
+/// [`clip_against_fat_curves`] and are intersected, as in the float kernel.
+pub fn clip_against_fat_curves_swapped<G: Geo>(
+    first: &[Fat<G>],
+    second: impl FnOnce() -> Option<[Fat<G>; 2]>,
+) -> (ClipBounds, bool) {
+    let unclipped = ClipBounds::Keep([0.0; 3]);
+    let both = |a: ClipBounds, second: Option<[Fat<G>; 2]>| {
+        let b = second.map_or(unclipped, |p| clip_against_fat_curves(&p));
+        (intersect_bounds(a, b, G::RIGOROUS), true)
     };
-    proven.then_some(claim)
+    let claim_a = if G::RIGOROUS { float_claim(first) } else { None };
+    let Some(claim_a) = claim_a else {
+        let a = clip_against_fat_curves(first);
+        return if keeps_over_half(a) {
+            both(a, second())
+        } else {
+            (a, false)
+        };
+    };
+    let verified_a = || verified(first, claim_a).unwrap_or_else(|| clip_in(first));
+    if !keeps_over_half(claim_a) {
+        return (verified_a(), false);
+    }
+    let Some(pair_b) = second() else {
+        return (verified_a(), true);
+    };
+    let Some(claim_b) = float_claim(&pair_b) else {
+        return both(verified_a(), Some(pair_b));
+    };
+    let (ma, mb) = (claim_bounds(claim_a), claim_bounds(claim_b));
+    let (va, vb) = (Verifier::of(first), Verifier::of(&pair_b));
+    let free = |v: &Option<Verifier<G>>, k: usize, m: f64| v.as_ref().is_some_and(|v| v.sliver_free(k, m));
+    if claim_a == ClipBounds::Empty || claim_b == ClipBounds::Empty {
+        let empty = (0..3).any(|k| {
+            (claim_a == ClipBounds::Empty && free(&va, k, 1.0)) || (claim_b == ClipBounds::Empty && free(&vb, k, 1.0))
+        });
+        return if empty {
+            (ClipBounds::Empty, true)
+        } else {
+            both(clip_against_fat_curves(first), Some(pair_b))
+        };
+    }
+    let mut m = [0.0; 3];
+    for k in 0..3 {
+        // The larger bound first, by its own pair; then the smaller.
+        let (hi, lo) = if ma[k] >= mb[k] {
+            ((&va, ma[k]), (&vb, mb[k]))
+        } else {
+            ((&vb, mb[k]), (&va, ma[k]))
+        };
+        m[k] = if hi.1 <= 0.0 || free(hi.0, k, hi.1) {
+            hi.1
+        } else if lo.1 <= 0.0 || free(lo.0, k, lo.1) {
+            lo.1
+        } else {
+            return both(clip_against_fat_curves(first), Some(pair_b));
+        };
+    }
+    (keep_or_empty(m, true), true)
 }
 
 /// The data of [`Verifier::sliver_free`] shared by the three slivers of one
@@ -359,6 +454,14 @@ struct Verifier<G> {
 }
 
 impl<G: Geo> Verifier<G> {
+    /// The verifier of a fat-curve pair whose first curve is a line.
+    fn of(fats: &[Fat<G>]) -> Option<Self> {
+        match fats {
+            [Fat::Line(line, da), other] => Some(Self::new(line, *da, other)),
+            _ => None,
+        }
+    }
+
     fn new(line: &Linear<G>, da: f64, other: &Fat<G>) -> Self {
         let zero = G::pt(0.0);
         let (q, db) = match other {

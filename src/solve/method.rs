@@ -1,7 +1,10 @@
 //! The four clipping methods of Liu et al. (2016) and the preprocessing of
 //! hybrid clipping (§2.3.1, Eqs. (7)–(8)).
 
-use super::fatcurve::{bezier_bounds, clip_against_fat_curves, intersect_bounds, ClipBounds, Fat, Linear, Quadratic};
+use super::fatcurve::{
+    bezier_bounds, clip_against_fat_curves, clip_against_fat_curves_swapped, intersect_bounds, ClipBounds, Fat, Linear,
+    Quadratic,
+};
 use super::num::Geo;
 use crate::poly::{Reduced, TriBall};
 use std::fmt;
@@ -315,20 +318,45 @@ fn strip_width(red: &Reduced) -> f64 {
 /// its own barycentric coordinates (for `Hc`). The geometry runs in `G`:
 /// [`GeoIv`](super::num::GeoIv) for proofs, `f64` for the plain iteration.
 pub fn clip_bounds<G: Geo>(method: Method, fa: &TriBall, fb: &TriBall, incenter: [f64; 3]) -> ClipBounds {
-    let unclipped = ClipBounds::Keep([0.0; 3]);
-    let fat = |p: &TriBall, k: usize| fat_curve::<G>(p, k);
-    let pair = |a: Option<Fat<G>>, b: Option<Fat<G>>| match (a, b) {
-        (Some(a), Some(b)) => clip_against_fat_curves(&[a, b]),
-        _ => unclipped,
-    };
     match method {
         Method::Bezier => intersect_bounds(
             bezier_bounds(fa, G::RIGOROUS),
             bezier_bounds(fb, G::RIGOROUS),
             G::RIGOROUS,
         ),
-        Method::Linear => pair(fat(fa, 1), fat(fb, 1)),
-        Method::HcNoPre => pair(fat(fa, 1), fat(fb, 2)),
+        _ => {
+            fat_pair::<G>(method, fa, fb, incenter).map_or(ClipBounds::Keep([0.0; 3]), |p| clip_against_fat_curves(&p))
+        }
+    }
+}
+
+/// [`clip_bounds`], and for the fat-curve methods, where the kept tri-box is
+/// more than half of this one, also with the roles of `f` and `g` swapped,
+/// intersected (see [`clip_against_fat_curves_swapped`], which proves each
+/// side of the two clips once); the flag says whether the swapped clip ran.
+pub fn clip_bounds_swapped<G: Geo>(
+    method: Method,
+    fa: &TriBall,
+    fb: &TriBall,
+    incenter: [f64; 3],
+) -> (ClipBounds, bool) {
+    if method == Method::Bezier {
+        return (clip_bounds::<G>(method, fa, fb, incenter), false);
+    }
+    let Some(first) = fat_pair::<G>(method, fa, fb, incenter) else {
+        return (ClipBounds::Keep([0.0; 3]), false);
+    };
+    clip_against_fat_curves_swapped(&first, || fat_pair::<G>(method, fb, fa, incenter))
+}
+
+/// The two fat curves `method` clips with (a fat line of `f` first), `None`
+/// where one has no finite width; not for Bézier clipping.
+fn fat_pair<G: Geo>(method: Method, fa: &TriBall, fb: &TriBall, incenter: [f64; 3]) -> Option<[Fat<G>; 2]> {
+    let fat = |p: &TriBall, k: usize| fat_curve::<G>(p, k);
+    match method {
+        Method::Bezier => None,
+        Method::Linear => Some([fat(fa, 1)?, fat(fb, 1)?]),
+        Method::HcNoPre => Some([fat(fa, 1)?, fat(fb, 2)?]),
         Method::Hc => {
             let plain = fa.reduce(1);
             let fhat = preprocessed(fa, fb, incenter).map(|p| {
@@ -343,7 +371,7 @@ pub fn clip_bounds<G: Geo>(method: Method, fa: &TriBall, fb: &TriBall, incenter:
                 Some((p, red)) if strip_width(red) < strip_width(&plain) => to_fat::<G>(red, p),
                 _ => to_fat::<G>(&plain, fa),
             };
-            pair(line, fat(fb, 2))
+            Some([line?, fat(fb, 2)?])
         }
     }
 }

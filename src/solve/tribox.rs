@@ -45,6 +45,51 @@ pub fn orient(a: [GeoIv; 2], b: [GeoIv; 2], c: [GeoIv; 2]) -> GeoIv {
     (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
 }
 
+/// A fast proof that every point of the box `k` lies strictly left of the
+/// line from `a` to `b` (`orient(a, b, x) > 0`); `false` means "not proven"
+/// (the caller then evaluates [`orient`] in `GeoIv`).
+///
+/// The orientation at the box's centre `m` is evaluated in `f64` and
+/// accepted beyond Shewchuk's error bound for `orient2d` on float inputs,
+/// `(3 + 16ε)ε · (|ex·dy| + |ey·dx|)` with `ε = 2⁻⁵³`, `e = b − a`,
+/// `d = m − a` (Shewchuk 1997, `ccwerrboundA`; valid without underflow,
+/// which the `1e-300` slack and the `1e-250` floor keep away); the box
+/// moves it by at most `|ex|·r_t + |ey|·r_s` for radii `r` bounding the
+/// distance of the box's ends from `m` (any float of the box). Every bound is enlarged by a
+/// relative `2⁻⁴⁰`, far above the few roundings of its own evaluation.
+fn left_of_filtered(a: Pt, b: Pt, k: [GeoIv; 2]) -> bool {
+    const EPS: f64 = f64::EPSILON / 2.0;
+    const GROW: f64 = 1.0 + 1.0 / (1u64 << 40) as f64;
+    // Any float m in the box serves as centre; the differences to the ends
+    // are rounded by at most one relative ε (and are exact when zero).
+    let centre_radius = |x: GeoIv| {
+        let (lo, hi) = (x.lower(), x.upper());
+        let m = 0.5 * lo + 0.5 * hi;
+        // (Inside already without underflow; no `clamp`, which panics on NaN.)
+        let m = if m < lo {
+            lo
+        } else if m > hi {
+            hi
+        } else {
+            m
+        };
+        (m, (hi - m).max(m - lo) * GROW + 1e-300)
+    };
+    let ((ms, rs), (mt, rt)) = (centre_radius(k[0]), centre_radius(k[1]));
+    let (ex, ey) = (b[0] - a[0], b[1] - a[1]);
+    let (dx, dy) = (ms - a[0], mt - a[1]);
+    let (left, right) = (ex * dy, ey * dx);
+    let det = left - right;
+    let detsum = left.abs() + right.abs();
+    // NaN anywhere fails the comparison.
+    if detsum.is_nan() || detsum <= 1e-250 {
+        return false;
+    }
+    let errbound = (3.0 + 16.0 * EPS) * EPS * detsum;
+    let shift = ex.abs() * rt + ey.abs() * rs;
+    det > (errbound + shift + 1e-300) * GROW * GROW
+}
+
 fn ipt(p: Pt) -> [GeoIv; 2] {
     [GeoIv::pt(p[0]), GeoIv::pt(p[1])]
 }
@@ -122,8 +167,8 @@ impl TriBox {
 
     /// Provably counter-clockwise with positive area.
     pub fn is_proper(&self) -> bool {
-        let [a, b, c] = self.verts.map(ipt);
-        orient(a, b, c).lower() > 0.0
+        let [a, b, c] = self.verts;
+        left_of_filtered(a, b, ipt(c)) || orient(ipt(a), ipt(b), ipt(c)).lower() > 0.0
     }
 
     /// The triangle `{u ≥ mins[0], v ≥ mins[1], w ≥ mins[2]}` (local
@@ -194,8 +239,9 @@ impl TriBox {
 
     /// Every point of the box `k` lies in the closed triangle (proven).
     fn contains_enclosure(&self, k: [GeoIv; 2]) -> bool {
-        let [a, b, c] = self.verts.map(ipt);
-        orient(a, b, k).lower() >= 0.0 && orient(b, c, k).lower() >= 0.0 && orient(c, a, k).lower() >= 0.0
+        let [a, b, c] = self.verts;
+        let left_of = |p: Pt, q: Pt| left_of_filtered(p, q, k) || orient(ipt(p), ipt(q), k).lower() >= 0.0;
+        left_of(a, b) && left_of(b, c) && left_of(c, a)
     }
 
     /// [`TriBox::clip`] without the proof, for the plain `f64` iteration: the
@@ -275,6 +321,62 @@ pub fn box_of(tb: &TriBox) -> [Interval; 2] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use num_rational::BigRational;
+    use num_traits::{Signed, Zero};
+
+    /// The float filter of the orientation test claims `orient(a, b, x) > 0`
+    /// on a box only where the exact orientation (rationals) is positive at
+    /// all four corners of the box (it is affine in `x`), on random and on
+    /// nearly collinear configurations at scales from 1 down to 1e-15, with
+    /// boxes from points to wide; and it decides most clear cases.
+    #[test]
+    fn filtered_orientation_is_exact_where_it_claims() {
+        let mut rng = crate::rng::Rng(0x0f11_7e55);
+        let q = |x: f64| BigRational::from_float(x).expect("finite");
+        let (mut claimed, mut clear, mut clear_claimed) = (0, 0, 0);
+        for case in 0..20000 {
+            let scale = [1.0, 1e-3, 1e-8, 1e-15][case % 4];
+            let base = [rng.next_f64(), rng.next_f64()];
+            let a = [base[0] + scale * rng.next_signed(), base[1] + scale * rng.next_signed()];
+            let b = [base[0] + scale * rng.next_signed(), base[1] + scale * rng.next_signed()];
+            // A point near the line through a and b (or anywhere), pushed off
+            // it by a relative offset from 0 to 1.
+            let t = 2.0 * rng.next_signed();
+            let off = [0.0, 1e-17, 1e-15, 1e-12, 1e-6, 1.0][(case / 4) % 6] * rng.next_signed();
+            let (ex, ey) = (b[0] - a[0], b[1] - a[1]);
+            let m = [a[0] + t * ex - off * ey, a[1] + t * ey + off * ex];
+            let rad = [0.0, 1e-18, 1e-16, 1e-13][(case / 24) % 4] * scale;
+            let k = [m[0] - rad, m[0] + rad, m[1] - rad, m[1] + rad];
+            let boxed = [
+                GeoIv::pt(k[0]).hull(GeoIv::pt(k[1])),
+                GeoIv::pt(k[2]).hull(GeoIv::pt(k[3])),
+            ];
+            let exact =
+                |x: f64, y: f64| (q(b[0]) - q(a[0])) * (q(y) - q(a[1])) - (q(b[1]) - q(a[1])) * (q(x) - q(a[0]));
+            let corners = [
+                exact(k[0], k[2]),
+                exact(k[0], k[3]),
+                exact(k[1], k[2]),
+                exact(k[1], k[3]),
+            ];
+            let positive = corners.iter().all(|c| c.is_positive());
+            let claim = left_of_filtered(a, b, boxed);
+            if claim {
+                claimed += 1;
+                assert!(positive, "case {case}: claimed left of {a:?} -> {b:?}, box {k:?}");
+            }
+            // Clearly positive: the smallest corner is above 1e-9 of the scale².
+            let min = corners.iter().min().expect("four").clone();
+            if !min.is_zero() && min > q(1e-9 * scale * scale) {
+                clear += 1;
+                clear_claimed += usize::from(claim);
+            }
+        }
+        assert!(
+            claimed > 3000 && clear > 1000 && clear_claimed == clear,
+            "{claimed} {clear} {clear_claimed}"
+        );
+    }
 
     #[test]
     fn clip_contains_corners_and_shrinks() {
