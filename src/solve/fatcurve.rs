@@ -43,7 +43,7 @@ use crate::poly::{tri_indices, TriBall};
 use crate::scalar::iv;
 use crate::scalar::Sign;
 use smallvec::SmallVec;
-use std::cell::Cell;
+use std::cell::{Cell, OnceCell};
 
 /// `a0 + a1 s + a2 t`.
 #[derive(Clone, Copy, Debug)]
@@ -324,11 +324,13 @@ fn verified<G: Geo>(fats: &[Fat<G>], claim: ClipBounds) -> Option<ClipBounds> {
 
 /// The float kernel's clip of `fats` (on their midpoints), widened by
 /// [`VERIFY_MARGIN`] of the kept size: the claim a proof is to establish.
-/// `None` when the midpoints are not finite or the float clip keeps nothing
-/// measurable.
+/// `None` when the midpoints are not finite, the float clip keeps nothing
+/// measurable, or `fats` is not a pair.
 fn float_claim<G: Geo>(fats: &[Fat<G>]) -> Option<ClipBounds> {
-    let float: SmallVec<[Fat<f64>; 2]> = fats.iter().map(Fat::midpoints).collect::<Option<_>>()?;
-    match clip_in::<f64>(&float) {
+    let [a, b] = fats else {
+        return None;
+    };
+    match clip_in::<f64>(&[a.midpoints()?, b.midpoints()?]) {
         ClipBounds::Empty => Some(ClipBounds::Empty),
         ClipBounds::Keep(m) => {
             let size = 1.0 - (m[0] + m[1] + m[2]);
@@ -397,11 +399,18 @@ pub fn clip_against_fat_curves_swapped<G: Geo>(
         return both(verified_a(), Some(pair_b));
     };
     let (ma, mb) = (claim_bounds(claim_a), claim_bounds(claim_b));
-    let (va, vb) = (Verifier::of(first), Verifier::of(&pair_b));
-    let free = |v: &Option<Verifier<G>>, k: usize, m: f64| v.as_ref().is_some_and(|v| v.sliver_free(k, m));
+    // Each pair's verifier is built when a side first needs it.
+    type Lazy<'a, G> = (&'a OnceCell<Option<Verifier<G>>>, &'a [Fat<G>]);
+    let (cell_a, cell_b) = (OnceCell::new(), OnceCell::new());
+    let (va, vb): (Lazy<G>, Lazy<G>) = ((&cell_a, first), (&cell_b, &pair_b));
+    let free = |(v, fats): Lazy<G>, k: usize, m: f64| {
+        v.get_or_init(|| Verifier::of(fats))
+            .as_ref()
+            .is_some_and(|v| v.sliver_free(k, m))
+    };
     if claim_a == ClipBounds::Empty || claim_b == ClipBounds::Empty {
         let empty = (0..3).any(|k| {
-            (claim_a == ClipBounds::Empty && free(&va, k, 1.0)) || (claim_b == ClipBounds::Empty && free(&vb, k, 1.0))
+            (claim_a == ClipBounds::Empty && free(va, k, 1.0)) || (claim_b == ClipBounds::Empty && free(vb, k, 1.0))
         });
         return if empty {
             (ClipBounds::Empty, true)
@@ -413,9 +422,9 @@ pub fn clip_against_fat_curves_swapped<G: Geo>(
     for k in 0..3 {
         // The larger bound first, by its own pair; then the smaller.
         let (hi, lo) = if ma[k] >= mb[k] {
-            ((&va, ma[k]), (&vb, mb[k]))
+            ((va, ma[k]), (vb, mb[k]))
         } else {
-            ((&vb, mb[k]), (&va, ma[k]))
+            ((vb, mb[k]), (va, ma[k]))
         };
         m[k] = if hi.1 <= 0.0 || free(hi.0, k, hi.1) {
             hi.1
