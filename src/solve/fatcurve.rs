@@ -610,7 +610,7 @@ impl<G: Geo> Verifier<G> {
                 if grow.lower() > 0.0 {
                     h = h.min(((one - sig_m - G::pt(tau.lower())) / G::pt(grow.lower())).upper());
                 }
-                G::pt(h.max(0.0))
+                path_bound(h, m)
             };
             if !piece.clear(lam - lc, &h_max, SPLITS, &self.budget) {
                 return false;
@@ -620,7 +620,7 @@ impl<G: Geo> Verifier<G> {
         // σ + τ = 1 (where σ + τ grows: 1 − lσ/lτ > 0), parametrized by σ
         // ∈ [0, m], which bounds h.
         let dir = (sign(self.v.0 * r), sign(self.v.1 * r));
-        let by_sigma = |sig: G| G::pt(sig.upper().max(0.0));
+        let by_sigma = |sig: G| path_bound(sig.upper(), m);
         let range = zero.hull(sig_m);
         (slope.lower() >= 0.0 || self.edge_clear(k, ((zero, zero), (one, zero)), (l0, ls), range, dir, c, &by_sigma))
             && ((one + slope).upper() <= 0.0
@@ -647,8 +647,8 @@ impl<G: Geo> Verifier<G> {
         let e = -lt / ls;
         let dir = frame_dir(k, e, one);
         let c = self.half_hessian(dir, dir);
-        let by_tau = |tau: G| G::pt(tau.upper().max(0.0));
-        let by_sigma = |sig: G| G::pt((one - sig).upper().max(0.0));
+        let by_tau = |tau: G| path_bound(tau.upper(), 1.0);
+        let by_sigma = |sig: G| path_bound((one - sig).upper(), 1.0);
         let up = (zero, one);
         ((one + e).upper() <= 0.0
             || self.edge_clear(
@@ -687,7 +687,7 @@ impl<G: Geo> Verifier<G> {
         let sig_m = G::pt(m);
         let dir = frame_dir(k, one, zero);
         let c = self.half_hessian(dir, dir);
-        let by_sigma = |sig: G| G::pt(sig.upper().max(0.0));
+        let by_sigma = |sig: G| path_bound(sig.upper(), m);
         let by_m = |_: G| sig_m;
         let up = (zero, one);
         if !ls.nonzero()
@@ -727,7 +727,7 @@ impl<G: Geo> Verifier<G> {
                 continue;
             }
             let tau = zero.hull(G::pt((one - G::pt(sig.lower().max(0.0))).upper()));
-            let h_of = |t: G| G::pt((s0 + f.0 * t).upper().max(0.0));
+            let h_of = |t: G| path_bound((s0 + f.0 * t).upper(), m);
             if !self.edge_clear(k, ((s0, zero), f), (G::pt(lam), zero), tau, dir, c, &h_of) {
                 return false;
             }
@@ -795,6 +795,14 @@ fn frame_dir<G: Geo>(k: usize, a: G, b: G) -> (G, G) {
         1 => (b, a),
         _ => (b, -a - b),
     }
+}
+
+/// `G::pt` of an upper bound `h` on the length of a backward path, within
+/// `[0, cap]` for a `cap` every path obeys (`m` where `h ≤ σ(x) ≤ m`, 1 where
+/// `h ≤ τ(x) ≤ 1`), and `cap` itself for a NaN bound: never a bound that
+/// would cover less of the path.
+fn path_bound<G: Geo>(h: f64, cap: f64) -> G {
+    G::pt(if h.is_nan() { cap } else { h.clamp(0.0, cap) })
 }
 
 /// How often [`Piece::clear`] may halve a piece that fails as a whole.
@@ -894,11 +902,13 @@ fn clamp_hull<G: Geo>(a: G, b: G) -> Option<G> {
 /// `g` is convex and falls at 0; the mirror image bounds it from above.
 fn bounded_away<G: Geo>(e: G, d: G, c: G, h_max: G, delta: f64) -> bool {
     let above = |e_lo: f64, d_hi: f64, c_lo: f64| {
-        if e_lo.is_nan() || e_lo <= delta {
+        // NaN anywhere proves nothing.
+        if e_lo.is_nan() || d_hi.is_nan() || c_lo.is_nan() || e_lo <= delta {
             return false;
         }
         let (e, d, c) = (G::pt(e_lo), G::pt(d_hi), G::pt(c_lo));
-        if (e - d * h_max + c * h_max * h_max).lower() <= delta {
+        let at_end = (e - d * h_max + c * h_max * h_max).lower();
+        if at_end.is_nan() || at_end <= delta {
             return false;
         }
         if d_hi > 0.0 && c_lo > 0.0 {
@@ -1779,6 +1789,21 @@ mod tests {
             kept > 100 && empty > 100 && checked > 20000 && proofs.iter().all(|&p| p > 1000) && refuted > 1000,
             "{kept} {empty} {declined} {checked} {proofs:?} {refuted}"
         );
+    }
+
+    /// A NaN anywhere in the Taylor form or the path length proves nothing,
+    /// and a NaN path length becomes the cap, not 0.
+    #[test]
+    fn nan_proves_nothing() {
+        let (p, nan) = (GeoIv::pt, GeoIv::pt(f64::NAN));
+        assert!(bounded_away(p(1.0), p(0.1), p(1.0), p(0.5), 0.5));
+        assert!(!bounded_away(p(1.0), nan, p(1.0), p(0.5), 0.5));
+        assert!(!bounded_away(p(1.0), p(0.1), nan, p(0.5), 0.5));
+        assert!(!bounded_away(nan, p(0.1), p(1.0), p(0.5), 0.5));
+        assert!(!bounded_away(p(1.0), p(0.1), p(1.0), nan, 0.5));
+        assert_eq!(path_bound::<f64>(f64::NAN, 0.3), 0.3);
+        assert_eq!(path_bound::<f64>(-1.0, 0.3), 0.0);
+        assert_eq!(path_bound::<f64>(0.7, 0.3), 0.3);
     }
 
     /// The float evaluation of the hull crossings in `bezier_bounds` stays a
