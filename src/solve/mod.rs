@@ -892,8 +892,30 @@ fn touching_pairs(rects: &[Box2], mut found: impl FnMut(usize, usize)) {
 /// most this wide in both directions) are reported as one.
 const NEAR: f64 = 1e-5;
 
+/// The gap up to which a region [`nearly_touch`]es another: 2⁻¹⁶ of its
+/// larger side. Stalled tri-boxes around a multiple root are separated by
+/// slivers their clips proved root-free, ~2⁻²⁰ of the kept tri-box wide
+/// (`fatcurve::VERIFY_MARGIN`); regions that close are one region to a user.
+fn touch_gap(b: &IBox) -> f64 {
+    let side = b[0].wid().max(b[1].wid());
+    if side.is_finite() {
+        side / 65536.0
+    } else {
+        0.0
+    }
+}
+
+/// The boxes are apart by at most [`touch_gap`] of the smaller one in each
+/// direction (touching and overlapping boxes included).
+fn nearly_touch(a: &IBox, b: &IBox) -> bool {
+    let tol = touch_gap(a).min(touch_gap(b));
+    let gap = |x: Interval, y: Interval| (y.inf() - x.sup()).max(x.inf() - y.sup()).max(0.0);
+    gap(a[0], b[0]) <= tol && gap(a[1], b[1]) <= tol
+}
+
 /// The undecided leaves as clusters: leaves that touch are one region, and
-/// regions whose joint hull is at most [`NEAR`] wide are joined too. Near a
+/// regions whose joint hull is at most [`NEAR`] wide, or that nearly touch
+/// ([`nearly_touch`]), are joined too. Near a
 /// triple root the leaves that rounding leaves undecided are scattered over
 /// a ~1e-5 neighbourhood with excluded gaps between them; one region says
 /// the same, soundly (a hull covers more), and readably.
@@ -925,7 +947,7 @@ fn touching_regions(leaves: Vec<Found>) -> Vec<Cluster> {
 
 /// [`undecided_clusters`]' joining of near regions, for a solution from
 /// [`touching_regions`]: undecided clusters whose joint hull is at most
-/// [`NEAR`] wide become one.
+/// [`NEAR`] wide, or that nearly touch ([`nearly_touch`]), become one.
 fn join_undecided(mut sol: Solution) -> Solution {
     let (near, other): (Vec<Cluster>, Vec<Cluster>) = std::mem::take(&mut sol.clusters)
         .into_iter()
@@ -942,15 +964,16 @@ fn join_undecided(mut sol: Solution) -> Solution {
 }
 
 /// Joins regions whose joint hull is at most [`NEAR`] wide in both
-/// directions, until no two can be joined. Each pass sweeps the regions in
-/// order of their lower `u` and tries them against the joined regions that
-/// could still take them (lower `u` within `NEAR`), so thousands of leaves
-/// along a curve of near-roots cost about linear time per pass, not
-/// quadratic; a pass that joins nothing ends it.
+/// directions, or that nearly touch ([`nearly_touch`]), until no two can be
+/// joined. Each pass sweeps the regions in order of their lower `u` and
+/// tries them against the joined regions that could still take them (lower
+/// `u` within `NEAR`, or upper `u` within their touching gap), so thousands
+/// of leaves along a curve of near-roots cost about linear time per pass,
+/// not quadratic; a pass that joins nothing ends it.
 fn join_near(mut regions: Vec<Found>) -> Vec<Found> {
     let near = |a: &IBox, b: &IBox| {
         let h = hull(*a, *b);
-        h[0].wid() <= NEAR && h[1].wid() <= NEAR
+        (h[0].wid() <= NEAR && h[1].wid() <= NEAR) || nearly_touch(a, b)
     };
     loop {
         let before = regions.len();
@@ -961,7 +984,7 @@ fn join_near(mut regions: Vec<Found>) -> Vec<Found> {
             let lo = r.bx[0].inf();
             // A joined region starting more than NEAR to the left of this
             // one (and of every later one) can take none of them.
-            open.retain(|&k| out[k].bx[0].inf() >= lo - NEAR);
+            open.retain(|&k| out[k].bx[0].inf() >= lo - NEAR || out[k].bx[0].sup() + touch_gap(&out[k].bx) >= lo);
             match open.iter().find(|&&k| near(&out[k].bx, &r.bx)) {
                 Some(&k) => {
                     let m = &mut out[k];
@@ -1215,6 +1238,40 @@ mod tests {
     /// random rectangles of mixed sizes, rectangles sharing only an edge or a
     /// corner, zero-width ones, a few huge ones and thousands strung along
     /// one line.
+    /// Regions apart by less than 2⁻¹⁶ of the smaller one join; regions
+    /// further apart (and wider than `NEAR`) stay apart; the sweep finds a
+    /// nearly touching region to the right of a long one.
+    #[test]
+    fn nearly_touching_regions_join() {
+        let region = |u0: f64, u1: f64, v0: f64, v1: f64| Found {
+            bx: [interval(u0, u1), interval(v0, v1)],
+            diameters: Vec::new(),
+        };
+        let joined = join_near(vec![
+            region(0.0, 1e-3, 0.0, 1e-3),
+            region(1e-3 + 1e-9, 2e-3, 0.0, 1e-3),
+            region(0.5, 0.6, 0.5, 0.6),
+            region(0.6 + 1e-3, 0.7, 0.5, 0.6),
+            region(0.1, 0.3, 0.0, 1e-3),
+            region(0.3 + 1e-9, 0.3 + 1e-3, 0.0, 1e-3),
+            region(0.4, 0.401, 0.0, 1e-3),
+            region(0.401 + 1e-7, 0.402, 0.0, 1e-3),
+        ]);
+        let mut lows: Vec<(f64, f64)> = joined.iter().map(|r| (r.bx[0].inf(), r.bx[0].sup())).collect();
+        lows.sort_by(|a, b| a.0.total_cmp(&b.0));
+        assert_eq!(
+            lows,
+            vec![
+                (0.0, 2e-3),
+                (0.1, 0.3 + 1e-3),
+                (0.4, 0.401),
+                (0.401 + 1e-7, 0.402),
+                (0.5, 0.6),
+                (0.6 + 1e-3, 0.7)
+            ]
+        );
+    }
+
     #[test]
     fn touching_pairs_match_brute_force() {
         let mut rng = crate::rng::Rng(0x2545_f491_4f6c_dd1d);
