@@ -355,7 +355,7 @@ fn claim_bounds(claim: ClipBounds) -> [f64; 3] {
 
 /// The kept tri-box is more than half as wide as the clipped one (it is
 /// similar to it with ratio `1 − Σ m`).
-pub fn keeps_over_half(bounds: ClipBounds) -> bool {
+fn keeps_over_half(bounds: ClipBounds) -> bool {
     matches!(bounds, ClipBounds::Keep(m) if 1.0 - m.iter().sum::<f64>() > 0.5)
 }
 
@@ -368,35 +368,35 @@ pub fn keeps_over_half(bounds: ClipBounds) -> bool {
 /// side is proven once, by the fat-curve pair whose claim sets it (the other
 /// pair's smaller bound is the second try): a root lies in both pairs' fat
 /// regions, so a sliver free of either pair's region holds no root. Where
-/// both proofs of a side fail, both pairs fall back to
-/// [`clip_against_fat_curves`] and are intersected, as in the float kernel.
+/// both proofs of a side fail, each pair's clip is computed on its own from
+/// its float claim (proven, else by enclosures) and the two are intersected,
+/// as in the float kernel.
 pub fn clip_against_fat_curves_swapped<G: Geo>(
     first: &[Fat<G>],
     second: impl FnOnce() -> Option<[Fat<G>; 2]>,
 ) -> (ClipBounds, bool) {
     let unclipped = ClipBounds::Keep([0.0; 3]);
-    let both = |a: ClipBounds, second: Option<[Fat<G>; 2]>| {
-        let b = second.map_or(unclipped, |p| clip_against_fat_curves(&p));
-        (intersect_bounds(a, b, G::RIGOROUS), true)
-    };
+    let both = |a: ClipBounds, b: ClipBounds| (intersect_bounds(a, b, G::RIGOROUS), true);
+    // The float kernel, or no float claim: the (enclosure) clip of `first`.
     let claim_a = if G::RIGOROUS { float_claim(first) } else { None };
     let Some(claim_a) = claim_a else {
-        let a = clip_against_fat_curves(first);
+        let a = clip_in(first);
         return if keeps_over_half(a) {
-            both(a, second())
+            both(a, second().map_or(unclipped, |p| clip_against_fat_curves(&p)))
         } else {
             (a, false)
         };
     };
-    let verified_a = || verified(first, claim_a).unwrap_or_else(|| clip_in(first));
+    // A pair's own clip from its float claim: proven, else the enclosures.
+    let own = |fats: &[Fat<G>], claim| verified(fats, claim).unwrap_or_else(|| clip_in(fats));
     if !keeps_over_half(claim_a) {
-        return (verified_a(), false);
+        return (own(first, claim_a), false);
     }
     let Some(pair_b) = second() else {
-        return (verified_a(), true);
+        return (own(first, claim_a), true);
     };
     let Some(claim_b) = float_claim(&pair_b) else {
-        return both(verified_a(), Some(pair_b));
+        return both(own(first, claim_a), clip_in(&pair_b));
     };
     let (ma, mb) = (claim_bounds(claim_a), claim_bounds(claim_b));
     // Each pair's verifier is built when a side first needs it.
@@ -415,7 +415,7 @@ pub fn clip_against_fat_curves_swapped<G: Geo>(
         return if empty {
             (ClipBounds::Empty, true)
         } else {
-            both(clip_against_fat_curves(first), Some(pair_b))
+            both(own(first, claim_a), own(&pair_b, claim_b))
         };
     }
     let mut m = [0.0; 3];
@@ -431,7 +431,7 @@ pub fn clip_against_fat_curves_swapped<G: Geo>(
         } else if lo.1 <= 0.0 || free(lo.0, k, lo.1) {
             lo.1
         } else {
-            return both(clip_against_fat_curves(first), Some(pair_b));
+            return both(own(first, claim_a), own(&pair_b, claim_b));
         };
     }
     (keep_or_empty(m, true), true)
