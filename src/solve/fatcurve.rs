@@ -530,8 +530,9 @@ impl<G: Geo> Verifier<G> {
     /// expansions at `x0`, and [`bounded_away`] proves `E − D h + C h² > δ_b`
     /// (or `< −δ_b`) on `[0, σ_max]`. Then no point of `Ω` has `|P| ≤ δ_b`.
     /// A strip (nearly) parallel to the end segment, `lτ` not proven
-    /// non-zero, is swept along `dτ/dh = 1` instead when `lσ ≠ 0`
-    /// ([`Verifier::swept_along_tau`]).
+    /// non-zero, is swept across instead ([`Verifier::swept_across`]), and,
+    /// where that fails, along its lines with `dτ/dh = 1`
+    /// ([`Verifier::swept_along_tau`]); both need `lσ ≠ 0`.
     fn sliver_free(&self, k: usize, m: f64) -> bool {
         let one = G::pt(1.0);
         let (l0, ls, lt) = self.frame_line(k);
