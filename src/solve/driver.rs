@@ -137,6 +137,40 @@ fn noisy(p: &TriBall) -> bool {
     2.0 * p.rad() > NOISE_RATIO * p.mag()
 }
 
+/// The smallest tri-box a clip of `item` can keep around a transversal root
+/// with its coefficients' noise, estimated: each fat curve is at least the
+/// ball's diameter `2r` wide, a strip `2r / |∇p|` wide in the tri-box's
+/// coordinates (gradient of the midpoint polynomial at the centre), and two
+/// strips at angle `θ` meet in a region about `(w_f + w_g) / sin θ` across;
+/// times the tri-box's diameter. `∞` where the gradients vanish or are
+/// parallel (a double root, a tangency: always worth recomputing).
+///
+/// Near the end of a run to `ε = 1e-12` this is 2e-15 … 5e-14 on the
+/// paper's examples with float balls, but 9e-13 at Example 3 (k = 5)'s
+/// nearly tangential root (sin θ ≈ 4e-3): there the compensated
+/// coefficients save two tri-boxes, elsewhere they bought nothing the clips
+/// needed.
+fn clip_floor(item: &Leaf) -> f64 {
+    let centre = [1.0 / 3.0; 3];
+    let (_, a, _) = item.fa.jet2(&centre);
+    let (_, b, _) = item.fb.jet2(&centre);
+    let (na, nb) = (a[0].hypot(a[1]), b[0].hypot(b[1]));
+    let sin = (a[0] * b[1] - a[1] * b[0]).abs() / (na * nb);
+    let floor = item.tb.diam() * (2.0 * item.fa.rad() / na + 2.0 * item.fb.rad() / nb) / sin;
+    if floor.is_nan() {
+        f64::INFINITY
+    } else {
+        floor
+    }
+}
+
+/// A noisy float ball ([`noisy`]) is kept while its [`clip_floor`] is below
+/// this fraction of the run's `ε`: the clips still reach `ε`, and a tri-box
+/// that stalls after all is recomputed then (the stalled branch of
+/// [`step`]). A floor estimate only decides when to pay for precision, never
+/// what is proven.
+pub const FLOOR_MARGIN: f64 = 1.0 / 16.0;
+
 /// A clip of a tri-box of diameter `h` across a transversal root can shrink it
 /// to about `ρ·h`, where `ρ` is the relative noise of the coefficients
 /// (the fat curves are at least that wide). Recomputing from the exact input
@@ -595,14 +629,18 @@ pub const SINGULAR_FLOOR_PRECISE: f64 = 1e-13;
 /// ([`TriBall::sign_hidden`]: exact coefficients prove their signs one by one
 /// at any size, within the exact budget — a sparse system whose small terms
 /// are far below the rounding of its large ones), `Some(false)` when the
-/// coefficients are only noisy relative to their values (which matters on
-/// small tri-boxes), `None` otherwise and always for the float kernel.
-fn needs_finer<G: Geo>(item: &Leaf) -> Option<bool> {
+/// coefficients are noisy relative to their values ([`noisy`], which
+/// matters on small tri-boxes) and that noise could keep the clips from
+/// reaching `eps` ([`clip_floor`]), `None` otherwise and always for the
+/// float kernel.
+fn needs_finer<G: Geo>(item: &Leaf, eps: f64) -> Option<bool> {
     if !G::RIGOROUS {
         return None;
     }
-    let hidden = item.fa.sign_hidden() || item.fb.sign_hidden();
-    (hidden || noisy(&item.fa) || noisy(&item.fb)).then_some(hidden)
+    if item.fa.sign_hidden() || item.fb.sign_hidden() {
+        return Some(true);
+    }
+    ((noisy(&item.fa) || noisy(&item.fb)) && clip_floor(item) >= FLOOR_MARGIN * eps).then_some(false)
 }
 
 fn step<G: Geo>(cx: &mut Ctx, mut item: Leaf, stack: &mut Vec<Leaf>, probe: &mut dyn FnMut(&TriBox) -> Probe) {
@@ -611,7 +649,7 @@ fn step<G: Geo>(cx: &mut Ctx, mut item: Leaf, stack: &mut Vec<Leaf>, probe: &mut
     let diam = item.tb.diam();
     // Recompute more precisely (same tri-box, same level) before the clip is
     // spoiled by rounding, as long as a finer precision helps.
-    while let Some(hidden) = needs_finer::<G>(&item) {
+    while let Some(hidden) = needs_finer::<G>(&item, limits.eps) {
         let Some(next) = finer(cx, item.precision, if hidden { 0.0 } else { diam }) else {
             break;
         };
@@ -827,6 +865,7 @@ pub fn path_diameters(nodes: &[Node], node: usize) -> Vec<f64> {
 mod tests {
     use super::*;
     use crate::scalar::rational_to_f64;
+    use crate::solve::num::GeoIv;
 
     fn ball(expr: &str) -> TriBall {
         let p = crate::parse_polynomial(expr).unwrap().to_triangle(2);
@@ -844,5 +883,43 @@ mod tests {
         let k = newton_kappa(&ball("u^2 + v^2 - 1/4"), &ball("u - v"));
         assert!((k - 3.0).abs() < 1e-12, "{k}");
         assert_eq!(newton_kappa(&ball("u - v"), &ball("2*u - 2*v + 1")), f64::INFINITY);
+    }
+
+    /// The clip floor against values worked by hand on the unit triangle
+    /// (diameter √2) with radius `r` on both balls: `√2 · (2r/|∇f| +
+    /// 2r/|∇g|) / sin θ` — `√2 · 4r` for `u`, `v` (θ = 90°), `√2 · (2r + 2r/√2)
+    /// / sin 45°` for `u`, `u + v`; ∞ for parallel gradients and for a
+    /// vanishing one. And the gate: a noisy ball is recomputed for an `ε`
+    /// near its floor, not for one far above it.
+    #[test]
+    fn clip_floor_by_hand() {
+        let r = 1e-9;
+        let leaf = |f: &str, g: &str| {
+            let noisy = |e: &str| TriBall::new(2, ball(e).mid(), r).unwrap();
+            Leaf {
+                tb: TriBox {
+                    verts: [[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]],
+                },
+                node: 0,
+                fa: noisy(f),
+                fb: noisy(g),
+                precision: Precision::Float,
+            }
+        };
+        let close = |x: f64, y: f64| (x - y).abs() <= 1e-12 * y;
+        let s2 = 2f64.sqrt();
+        let right = clip_floor(&leaf("u - 1/3", "v - 1/4"));
+        assert!(close(right, s2 * 4.0 * r), "{right}");
+        let slanted = clip_floor(&leaf("u - 1/3", "u + v - 1/2"));
+        assert!(close(slanted, s2 * (2.0 * r + 2.0 * r / s2) * s2), "{slanted}");
+        assert_eq!(clip_floor(&leaf("u - 1/3", "2*u - 1/2")), f64::INFINITY);
+        assert_eq!(clip_floor(&leaf("1/3", "v - 1/4")), f64::INFINITY);
+        // Coefficients up to 2/3 with noise 2e-9 > 1e-9 · 2/3: noisy; the
+        // floor 5.7e-9 matters for ε = 1e-8, not for ε = 1e-6.
+        let item = leaf("u - 1/3", "v - 1/4");
+        assert!(noisy(&item.fa));
+        assert_eq!(needs_finer::<GeoIv>(&item, 1e-8), Some(false));
+        assert_eq!(needs_finer::<GeoIv>(&item, 1e-6), None);
+        assert_eq!(needs_finer::<f64>(&item, 1e-8), None);
     }
 }
