@@ -40,7 +40,8 @@ use std::sync::{Arc, Mutex, OnceLock};
 mod endpoints;
 pub(crate) mod iv;
 pub(crate) use endpoints::{
-    cached_endpoints, endpoint_of, endpoints_of, from_endpoint, from_endpoints, store_endpoints, Arith, Endpoints,
+    cached_endpoints, endpoint_net, endpoint_of, endpoints_of, from_endpoint, from_endpoints, store_endpoints, Arith,
+    Endpoints,
 };
 
 /// What a kernel can say about the sign of a value.

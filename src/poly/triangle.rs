@@ -20,8 +20,8 @@
 use super::l2;
 use crate::error::{Error, Result};
 use crate::scalar::{
-    cached_endpoints, endpoint_of, endpoints_of, from_endpoint, from_endpoints, store_endpoints, Arith, Endpoints,
-    MatrixKey, Scalar,
+    cached_endpoints, endpoint_net, endpoint_of, endpoints_of, from_endpoint, from_endpoints, store_endpoints, Arith,
+    Endpoints, MatrixKey, Scalar,
 };
 use smallvec::SmallVec;
 
@@ -130,8 +130,7 @@ impl<S: Scalar> TriBezier<S> {
         // Scratch on the stack for the usual degrees (this is the hot loop of
         // Krawczyk's operator).
         if let Some(p) = bary_endpoints(b) {
-            let net: Option<SmallVec<[Endpoints; 36]>> = self.coeffs.iter().map(endpoint_of).collect();
-            if let Some(mut net) = net {
+            if let Some(mut net) = endpoint_net(&self.coeffs) {
                 for m in (1..=self.degree).rev() {
                     step(&mut net, m, &p);
                 }

@@ -161,6 +161,14 @@ pub(crate) fn endpoints_of<S: Scalar>(v: &[S]) -> Option<Vec<Endpoints>> {
         .collect()
 }
 
+/// A coefficient vector (`&Vec<S>`) as endpoint pairs on the stack for the
+/// usual degrees, if `S` is the interval kernel: one type check for the
+/// whole vector (the hot loop of Krawczyk's evaluations).
+pub(crate) fn endpoint_net(coeffs: &dyn Any) -> Option<smallvec::SmallVec<[Endpoints; 36]>> {
+    let v = coeffs.downcast_ref::<Vec<Interval>>()?;
+    Some(v.iter().map(|&i| Endpoints::of(i)).collect())
+}
+
 /// One value as an endpoint pair, if `S` is the interval kernel.
 #[inline]
 pub(crate) fn endpoint_of<S: Scalar>(x: &S) -> Option<Endpoints> {
