@@ -90,6 +90,44 @@ fn left_of_filtered(a: Pt, b: Pt, k: [GeoIv; 2]) -> bool {
     det > (errbound + shift + 1e-300) * GROW * GROW
 }
 
+/// An enclosure of `X = o + x (v − o) + y (w − o)` (exact `f64` inputs),
+/// coordinate by coordinate, from error-free transformations: `v − o =
+/// d + e_d` (TwoSum), `x·d = p + e_p` (FMA remainder), `p_v + p_w = s + e_s`
+/// and `o + s = r + e_r` (TwoSum) are exact, so
+/// `X = r + (e_r + e_s + e_pv + e_pw + x·e_dv + y·e_dw)`. The bracket is a
+/// few ulps of `r` and of the products; it is summed in `f64` as `c`, whose
+/// error (five sums and two products of terms bounded by `T = Σ|terms|`) is
+/// below `8u·T + 1e-300` with `u = 2⁻⁵³` (the absolute term covers
+/// underflowed products and remainders). Then `X ∈ [r + c − ε, r + c + ε]`:
+/// an end is `r` itself where the correction points inward, else `r + c ± ε`
+/// rounded and moved one float outward. About two ulps of the corner wide,
+/// against the few ulps of `Σ wᵢ Vᵢ` evaluated in intervals, with no interval
+/// operation.
+fn corner_enclosure(o: Pt, (x, v): (f64, Pt), (y, w): (f64, Pt)) -> [GeoIv; 2] {
+    const U: f64 = f64::EPSILON / 2.0;
+    let two_sum = |a: f64, b: f64| {
+        let s = a + b;
+        let bb = s - a;
+        (s, (a - (s - bb)) + (b - bb))
+    };
+    [0, 1].map(|i| {
+        let (dv, edv) = two_sum(v[i], -o[i]);
+        let (dw, edw) = two_sum(w[i], -o[i]);
+        let (pv, pw) = (x * dv, y * dw);
+        let (epv, epw) = (x.mul_add(dv, -pv), y.mul_add(dw, -pw));
+        let (s, es) = two_sum(pv, pw);
+        let (r, er) = two_sum(o[i], s);
+        let terms = [er, es, epv, epw, x * edv, y * edw];
+        let c = terms.iter().sum::<f64>();
+        let eps = 8.0 * U * terms.iter().map(|t| t.abs()).sum::<f64>() + 1e-300;
+        let (lo, hi) = (c - eps, c + eps);
+        let lo = if lo >= 0.0 { r } else { (r + lo).next_down() };
+        let hi = if hi <= 0.0 { r } else { (r + hi).next_up() };
+        // NaN (non-finite input) stays NaN: no containment is then proven.
+        GeoIv::new(lo, hi)
+    })
+}
+
 fn ipt(p: Pt) -> [GeoIv; 2] {
     [GeoIv::pt(p[0]), GeoIv::pt(p[1])]
 }
@@ -176,15 +214,16 @@ impl TriBox {
     /// vertices proven to contain it. `None` if no such triangle could be
     /// verified (the caller then keeps `self`).
     pub fn clip(&self, mins: [f64; 3]) -> Option<TriBox> {
-        let [a, b, c] = mins.map(GeoIv::pt);
-        let one = GeoIv::pt(1.0);
-        let corners_bary = [[one - b - c, b, c], [a, one - a - c, c], [a, b, one - a - b]];
-        let verts = self.verts.map(ipt);
-        let corners: [[GeoIv; 2]; 3] = corners_bary.map(|w| {
-            let s = w[0] * verts[0][0] + w[1] * verts[1][0] + w[2] * verts[2][0];
-            let t = w[0] * verts[0][1] + w[1] * verts[1][1] + w[2] * verts[2][1];
-            [s, t]
-        });
+        // Corner i of K is V_i moved towards the two other vertices by the
+        // other two minima (e.g. (1 − b − c) V1 + b V2 + c V3 = V1 + b (V2 −
+        // V1) + c (V3 − V1)), enclosed by `corner_enclosure`.
+        let [p, q, r] = self.verts;
+        let [a, b, c] = mins;
+        let corners = [
+            corner_enclosure(p, (b, q), (c, r)),
+            corner_enclosure(q, (a, p), (c, r)),
+            corner_enclosure(r, (a, p), (b, q)),
+        ];
         // K is homothetic to this tri-box with ratio ρ = 1 − Σ mins. Propose
         // c_K + λ (V_i − c_T) with λ a little above ρ: each edge then moves out by
         // (λ − ρ)·r (r the inradius), which must cover the corners' uncertainty.
@@ -376,6 +415,83 @@ mod tests {
             claimed > 3000 && clear > 1000 && clear_claimed == clear,
             "{claimed} {clear} {clear_claimed}"
         );
+    }
+
+    /// `corner_enclosure` holds the exact corner (rationals) and is at most
+    /// a few ulps wide, for triangles from the unit one down to 1e-15 wide
+    /// around points from 1e-300 to 1, corners at the origin, minima from 0
+    /// and subnormals to 1; and a clip built on it contains the exact
+    /// corners of `{u ≥ a, v ≥ b, w ≥ c}` (orientation in rationals).
+    #[test]
+    fn corner_enclosures_hold_the_exact_corners() {
+        let mut rng = crate::rng::Rng(0xc0_4e55);
+        let q = |x: f64| BigRational::from_float(x).expect("finite");
+        let (mut tried, mut clips, mut widest) = (0, 0, 0.0f64);
+        for case in 0..6000 {
+            let scale = [1.0, 1e-3, 1e-8, 1e-15][case % 4];
+            let base = [0.0, 1e-300, 1e-6, 0.3, 1.0][(case / 4) % 5];
+            let pt = |rng: &mut crate::rng::Rng| [base + scale * rng.next_f64(), base + scale * rng.next_f64()];
+            let tb = if case % 97 == 0 {
+                TriBox::unit()
+            } else {
+                // Counter-clockwise, as every tri-box.
+                let [p0, p1, p2] = [pt(&mut rng), pt(&mut rng), pt(&mut rng)];
+                let ccw = (p1[0] - p0[0]) * (p2[1] - p0[1]) - (p1[1] - p0[1]) * (p2[0] - p0[0]) > 0.0;
+                TriBox {
+                    verts: if ccw { [p0, p1, p2] } else { [p0, p2, p1] },
+                }
+            };
+            let min = |rng: &mut crate::rng::Rng| match rng.next_f64() {
+                p if p < 0.1 => 0.0,
+                p if p < 0.15 => 5e-324 * (1.0 + (rng.next_f64() * 1e6).floor()),
+                p if p < 0.3 => 1e-12 * rng.next_f64(),
+                _ => rng.next_f64() / 3.0,
+            };
+            let mins = [min(&mut rng), min(&mut rng), min(&mut rng)];
+            let [p, qv, r] = tb.verts;
+            let (a, b, c) = (mins[0], mins[1], mins[2]);
+            let corners = [
+                (p, (b, qv), (c, r), corner_enclosure(p, (b, qv), (c, r))),
+                (qv, (a, p), (c, r), corner_enclosure(qv, (a, p), (c, r))),
+                (r, (a, p), (b, qv), corner_enclosure(r, (a, p), (b, qv))),
+            ];
+            let mut exact = Vec::new();
+            for (o, (x, v), (y, w), e) in corners {
+                let xy = [0, 1].map(|i| q(o[i]) + q(x) * (q(v[i]) - q(o[i])) + q(y) * (q(w[i]) - q(o[i])));
+                for i in 0..2 {
+                    let (lo, hi) = (e[i].lower(), e[i].upper());
+                    assert!(q(lo) <= xy[i] && xy[i] <= q(hi), "case {case}: {lo} {hi} vs {}", xy[i]);
+                    let m = lo.abs().max(hi.abs());
+                    widest = widest.max((hi - lo) / (f64::EPSILON * m).max(1e-300));
+                }
+                exact.push(xy);
+            }
+            let removed = mins.iter().sum::<f64>();
+            if removed < 0.9 && tb.is_proper() {
+                // A clip that removes a measurable part of a tri-box far above
+                // the float grid must verify; below it (or removing ~nothing)
+                // it may fail, and the caller keeps the tri-box.
+                let representable = scale >= 1e-8 && removed >= 1e-6;
+                tried += usize::from(representable);
+                if let Some(k) = tb.clip(mins) {
+                    clips += usize::from(representable);
+                    let [ka, kb, kc] = k.verts.map(|v| [q(v[0]), q(v[1])]);
+                    let left = |s: &[BigRational; 2], t: &[BigRational; 2], x: &[BigRational; 2]| {
+                        !((&t[0] - &s[0]) * (&x[1] - &s[1]) - (&t[1] - &s[1]) * (&x[0] - &s[0])).is_negative()
+                    };
+                    for x in &exact {
+                        assert!(
+                            left(&ka, &kb, x) && left(&kb, &kc, x) && left(&kc, &ka, x),
+                            "case {case}: clip misses a corner"
+                        );
+                    }
+                }
+            }
+        }
+        // Two ulps of the corner plus the rounding of its correction; and
+        // most clips verify.
+        assert!(widest <= 4.0, "{widest}");
+        assert!(tried > 2400 && clips == tried, "{clips} of {tried}");
     }
 
     #[test]
