@@ -577,7 +577,7 @@ pub struct TriBallDD {
 
 /// `a + b = s + e` exactly (Knuth's TwoSum).
 #[inline(always)]
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
+pub(crate) fn two_sum(a: f64, b: f64) -> (f64, f64) {
     let s = a + b;
     let bb = s - a;
     (s, (a - (s - bb)) + (b - bb))
@@ -585,7 +585,7 @@ fn two_sum(a: f64, b: f64) -> (f64, f64) {
 
 /// `a·b = p + e` exactly (one FMA), away from underflow.
 #[inline(always)]
-fn two_prod(a: f64, b: f64) -> (f64, f64) {
+pub(crate) fn two_prod(a: f64, b: f64) -> (f64, f64) {
     let p = a * b;
     (p, a.mul_add(b, -p))
 }

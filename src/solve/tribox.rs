@@ -104,17 +104,14 @@ fn left_of_filtered(a: Pt, b: Pt, k: [GeoIv; 2]) -> bool {
 /// against the few ulps of `Σ wᵢ Vᵢ` evaluated in intervals, with no interval
 /// operation.
 fn corner_enclosure(o: Pt, (x, v): (f64, Pt), (y, w): (f64, Pt)) -> [GeoIv; 2] {
+    use crate::poly::ball::{two_prod, two_sum};
     const U: f64 = f64::EPSILON / 2.0;
-    let two_sum = |a: f64, b: f64| {
-        let s = a + b;
-        let bb = s - a;
-        (s, (a - (s - bb)) + (b - bb))
-    };
     [0, 1].map(|i| {
         let (dv, edv) = two_sum(v[i], -o[i]);
         let (dw, edw) = two_sum(w[i], -o[i]);
-        let (pv, pw) = (x * dv, y * dw);
-        let (epv, epw) = (x.mul_add(dv, -pv), y.mul_add(dw, -pw));
+        // (The FMA remainder is exact away from underflow; there the
+        // absolute term below covers it.)
+        let ((pv, epv), (pw, epw)) = (two_prod(x, dv), two_prod(y, dw));
         let (s, es) = two_sum(pv, pw);
         let (r, er) = two_sum(o[i], s);
         let terms = [er, es, epv, epw, x * edv, y * edw];
