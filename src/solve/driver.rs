@@ -150,10 +150,8 @@ fn noisy(p: &TriBall) -> bool {
 /// nearly tangential root (sin θ ≈ 4e-3): there the compensated
 /// coefficients save two tri-boxes, elsewhere they bought nothing the clips
 /// needed.
-fn clip_floor(item: &Leaf) -> f64 {
-    let centre = [1.0 / 3.0; 3];
-    let (_, a, _) = item.fa.jet2(&centre);
-    let (_, b, _) = item.fb.jet2(&centre);
+fn clip_floor(item: &Leaf, jets: &CentreJets) -> f64 {
+    let (a, b) = (jets.a, jets.b);
     let (na, nb) = (a[0].hypot(a[1]), b[0].hypot(b[1]));
     let sin = (a[0] * b[1] - a[1] * b[0]).abs() / (na * nb);
     let floor = item.tb.diam() * (2.0 * item.fa.rad() / na + 2.0 * item.fb.rad() / nb) / sin;
@@ -181,7 +179,8 @@ pub const FLOOR_MARGIN: f64 = 1.0 / 16.0;
 /// for precision, never what is proven; a tri-box that stalls after all is
 /// recomputed then (the stalled branch of [`step`]).
 fn float_suffices(item: &Leaf, eps: f64) -> bool {
-    clip_floor(item) < FLOOR_MARGIN * eps && newton_kappa(&item.fa, &item.fb) < KAPPA_PROBE
+    let jets = CentreJets::of(&item.fa, &item.fb);
+    clip_floor(item, &jets) < FLOOR_MARGIN * eps && kappa_of(&jets) < KAPPA_PROBE
 }
 
 /// A clip of a tri-box of diameter `h` across a transversal root can shrink it
@@ -458,9 +457,30 @@ enum Combination {
 /// costs about a third of a clip, so probing pays above ~25% success:
 /// [`KAPPA_PROBE`] = 0.3. `∞` for a singular `J` (or non-finite jets).
 fn newton_kappa(f: &TriBall, g: &TriBall) -> f64 {
-    let centre = [1.0 / 3.0; 3];
-    let (_, a, ha) = f.jet2(&centre);
-    let (_, b, hb) = g.jet2(&centre);
+    kappa_of(&CentreJets::of(f, g))
+}
+
+/// The gradients `a`, `b` and Hessians `ha`, `hb` of the midpoint
+/// polynomials of `f` and `g` at the tri-box's centroid, in its own
+/// coordinates ([`newton_kappa`] and [`clip_floor`] read the same jets).
+struct CentreJets {
+    a: [f64; 2],
+    ha: [f64; 3],
+    b: [f64; 2],
+    hb: [f64; 3],
+}
+
+impl CentreJets {
+    fn of(f: &TriBall, g: &TriBall) -> Self {
+        let centre = [1.0 / 3.0; 3];
+        let (_, a, ha) = f.jet2(&centre);
+        let (_, b, hb) = g.jet2(&centre);
+        Self { a, ha, b, hb }
+    }
+}
+
+/// [`newton_kappa`] from the jets.
+fn kappa_of(&CentreJets { a, ha, b, hb }: &CentreJets) -> f64 {
     let det = a[0] * b[1] - a[1] * b[0];
     let y = [[b[1] / det, -a[1] / det], [-b[0] / det, a[0] / det]];
     let hn = |h: [f64; 3]| h[0].abs() + 2.0 * h[1].abs() + h[2].abs();
@@ -919,6 +939,7 @@ mod tests {
                 precision: Precision::Float,
             }
         };
+        let clip_floor = |item: &Leaf| clip_floor(item, &CentreJets::of(&item.fa, &item.fb));
         let close = |x: f64, y: f64| (x - y).abs() <= 1e-12 * y;
         let s2 = 2f64.sqrt();
         let right = clip_floor(&leaf("u - 1/3", "v - 1/4"));

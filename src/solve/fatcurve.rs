@@ -114,13 +114,6 @@ impl<S: Geo> Quadratic<S> {
         c[0] + s * (c[1] + c[3] * s + c[4] * t) + t * (c[2] + c[5] * t)
     }
 
-    /// `(∂Q/∂s, ∂Q/∂t)` at `(s, t)`.
-    pub fn gradient(&self, s: S, t: S) -> (S, S) {
-        let c = &self.c;
-        let two = S::pt(2.0);
-        (c[1] + two * c[3] * s + c[4] * t, c[2] + c[4] * s + two * c[5] * t)
-    }
-
     fn shifted(&self, d: f64) -> Self {
         let mut c = self.c;
         c[0] = c[0] - S::pt(d);
