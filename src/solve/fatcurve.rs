@@ -541,22 +541,34 @@ impl<G: Geo> Verifier<G> {
     /// where that fails, along its lines with `dτ/dh = 1`
     /// ([`Verifier::swept_along_tau`]); both need `lσ ≠ 0`.
     fn sliver_free(&self, k: usize, m: f64) -> bool {
-        let one = G::pt(1.0);
-        let (l0, ls, lt) = self.frame_line(k);
-        let sig_m = G::pt(m);
+        let line = self.sliver_line(k, m);
         let da = self.da;
-        let base = l0 + ls * sig_m;
-        let far = base + lt * (one - sig_m);
-        let corners = [l0, l0 + lt, base, far];
+        let corners = [line.l0, line.top, line.base, line.far];
         if corners.iter().all(|x| x.lower() > da) || corners.iter().all(|x| x.upper() < -da) {
             return true;
         }
-        let frame = (l0, ls, lt);
         self.budget.set(CLEAR_BUDGET);
-        if lt.nonzero() {
-            self.swept_along_sigma(k, m, frame)
+        if line.lt.nonzero() {
+            self.swept_along_sigma(k, m, line)
         } else {
-            self.swept_across(k, m, frame) || (ls.nonzero() && self.swept_along_tau(k, m, frame))
+            self.swept_across(k, m, line) || (line.ls.nonzero() && self.swept_along_tau(k, m, line))
+        }
+    }
+
+    /// `L` in the frame of sliver `k` ([`Verifier::frame_line`]) with its
+    /// values at the corners of the sliver `{σ ≤ m}`, computed once for
+    /// the corner test and the sweeps.
+    fn sliver_line(&self, k: usize, m: f64) -> SliverLine<G> {
+        let (l0, ls, lt) = self.frame_line(k);
+        let sig_m = G::pt(m);
+        let base = l0 + ls * sig_m;
+        SliverLine {
+            l0,
+            ls,
+            lt,
+            top: l0 + lt,
+            base,
+            far: base + lt * (G::pt(1.0) - sig_m),
         }
     }
 
@@ -573,11 +585,17 @@ impl<G: Geo> Verifier<G> {
 
     /// [`Verifier::sliver_free`] with `lτ ≠ 0`: the strip's lines run along
     /// `d` with `dσ/dh = 1`, so `h ≤ σ(x)`.
-    fn swept_along_sigma(&self, k: usize, m: f64, (l0, ls, lt): (G, G, G)) -> bool {
+    fn swept_along_sigma(&self, k: usize, m: f64, line: SliverLine<G>) -> bool {
+        let SliverLine {
+            l0,
+            ls,
+            lt,
+            top,
+            base,
+            far,
+        } = line;
         let (zero, one) = (G::pt(0.0), G::pt(1.0));
         let sig_m = G::pt(m);
-        let base = l0 + ls * sig_m;
-        let far = base + lt * (one - sig_m);
         let r = one / lt;
         let r2 = square(r);
         // d = v / σ(v) with σ(v) = lτ, except −lτ for k = 1.
@@ -620,11 +638,11 @@ impl<G: Geo> Verifier<G> {
         // `Ω` itself, no edge is an exit and this piece is the whole proof.
         // Elsewhere the slab may reach beyond an edge, where `P` may vanish:
         // it gets [`SLAB_TRY_BUDGET`] halvings, then the sweep with exits.
-        let both = self.strip_spans((l0, l0 + lt)) && self.strip_spans((base, far));
+        let both = self.strip_spans((l0, top)) && self.strip_spans((base, far));
         let lam = if both {
             Some(self.lambda)
         } else {
-            clamp_hull(l0.hull(l0 + lt).hull(base).hull(far), self.lambda)
+            clamp_hull(l0.hull(top).hull(base).hull(far), self.lambda)
         };
         let Some(lam) = lam else { return true };
         let lc = if both {
@@ -674,15 +692,7 @@ impl<G: Geo> Verifier<G> {
         let range = zero.hull(sig_m);
         (slope.lower() >= 0.0 || self.edge_clear(k, ((zero, zero), (one, zero)), (l0, ls), range, dir, c, &by_sigma))
             && ((one + slope).upper() <= 0.0
-                || self.edge_clear(
-                    k,
-                    ((zero, one), (one, -one)),
-                    (l0 + lt, ls - lt),
-                    range,
-                    dir,
-                    c,
-                    &by_sigma,
-                ))
+                || self.edge_clear(k, ((zero, one), (one, -one)), (top, ls - lt), range, dir, c, &by_sigma))
     }
 
     /// Whether `L` takes every value of `[−δ_a, δ_a]` on a side of the slab
@@ -700,7 +710,10 @@ impl<G: Geo> Verifier<G> {
     /// `h ≤ τ(x)`. The exits are the edge `σ + τ = 1` (where `1 + e > 0`),
     /// `σ = 0` (where `e < 0`) and the end segment `σ = m` (where `e > 0`);
     /// `τ` grows along `d`, so `τ = 0` is never one.
-    fn swept_along_tau(&self, k: usize, m: f64, (l0, ls, lt): (G, G, G)) -> bool {
+    fn swept_along_tau(&self, k: usize, m: f64, line: SliverLine<G>) -> bool {
+        let SliverLine {
+            lt, ls, top, base, l0, ..
+        } = line;
         let (zero, one) = (G::pt(0.0), G::pt(1.0));
         let sig_m = G::pt(m);
         let e = -lt / ls;
@@ -713,7 +726,7 @@ impl<G: Geo> Verifier<G> {
             || self.edge_clear(
                 k,
                 ((zero, one), (one, -one)),
-                (l0 + lt, ls - lt),
+                (top, ls - lt),
                 zero.hull(sig_m),
                 dir,
                 c,
@@ -724,7 +737,7 @@ impl<G: Geo> Verifier<G> {
                 || self.edge_clear(
                     k,
                     ((sig_m, zero), up),
-                    (l0 + ls * sig_m, lt),
+                    (base, lt),
                     zero.hull(one - sig_m),
                     dir,
                     c,
@@ -741,7 +754,10 @@ impl<G: Geo> Verifier<G> {
     /// (for `lσ ≠ 0`) as `σ = (±δ_a − l0' − lτ τ) / lσ`, `τ ∈ [0, 1 − σ]`
     /// (a superset: points beyond the sliver only add checks); with `lσ`
     /// not proven non-zero, no proof.
-    fn swept_across(&self, k: usize, m: f64, (l0, ls, lt): (G, G, G)) -> bool {
+    fn swept_across(&self, k: usize, m: f64, line: SliverLine<G>) -> bool {
+        let SliverLine {
+            lt, ls, top, base, l0, ..
+        } = line;
         let (zero, one) = (G::pt(0.0), G::pt(1.0));
         let sig_m = G::pt(m);
         let dir = frame_dir(k, one, zero);
@@ -753,7 +769,7 @@ impl<G: Geo> Verifier<G> {
             || !self.edge_clear(
                 k,
                 ((sig_m, zero), up),
-                (l0 + ls * sig_m, lt),
+                (base, lt),
                 zero.hull(one - sig_m),
                 dir,
                 c,
@@ -762,7 +778,7 @@ impl<G: Geo> Verifier<G> {
             || !self.edge_clear(
                 k,
                 ((zero, one), (one, -one)),
-                (l0 + lt, ls - lt),
+                (top, ls - lt),
                 zero.hull(sig_m),
                 dir,
                 c,
@@ -833,6 +849,19 @@ impl<G: Geo> Verifier<G> {
         };
         piece.clear(range - mid, &|mu: G| h_of(mid + mu), SPLITS, &self.budget)
     }
+}
+
+/// `L = l0' + lσ σ + lτ τ` in the frame of a sliver `{σ ≤ m}`, with its
+/// values at the sliver's corners `(0, 1)` (`top`), `(m, 0)` (`base`) and
+/// `(m, 1 − m)` (`far`); `l0'` is the value at `(0, 0)`.
+#[derive(Clone, Copy)]
+struct SliverLine<G> {
+    l0: G,
+    ls: G,
+    lt: G,
+    top: G,
+    base: G,
+    far: G,
 }
 
 /// The sliver frame's point `(σ, τ)` in `(s, t)`: `σ` is the barycentric
@@ -1817,15 +1846,18 @@ mod tests {
                 for m in tries.into_iter().filter(|m| *m > 0.0 && *m <= 1.0) {
                     // The proof, and each sweep on its own (either is valid
                     // wherever its coefficient is non-zero).
-                    let frame = verifier.frame_line(k);
+                    let frame = verifier.sliver_line(k, m);
                     let fresh = || verifier.budget.set(CLEAR_BUDGET);
                     // Proofs (and failures) by the slab shortcut of the sweep along σ.
-                    let (l0, ls, lt) = frame;
-                    let (sig_m, one) = (GeoIv::pt(m), GeoIv::pt(1.0));
-                    let base = l0 + ls * sig_m;
-                    let far = base + lt * (one - sig_m);
-                    let by_slab =
-                        lt.nonzero() && verifier.strip_spans((l0, l0 + lt)) && verifier.strip_spans((base, far));
+                    let SliverLine {
+                        l0,
+                        ls,
+                        lt,
+                        top,
+                        base,
+                        far,
+                    } = frame;
+                    let by_slab = lt.nonzero() && verifier.strip_spans((l0, top)) && verifier.strip_spans((base, far));
                     let sweeps = [
                         Some(verifier.sliver_free(k, m)),
                         lt.nonzero().then(|| {
