@@ -930,9 +930,7 @@ mod tests {
         let leaf = |f: &str, g: &str| {
             let noisy = |e: &str| TriBall::new(2, ball(e).mid(), r).unwrap();
             Leaf {
-                tb: TriBox {
-                    verts: [[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]],
-                },
+                tb: TriBox::unit(),
                 node: 0,
                 fa: noisy(f),
                 fb: noisy(g),
