@@ -12,7 +12,7 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use inari::Interval;
-use rootclip::poly::triangle::de_casteljau_step;
+use rootclip::internals::triangle::de_casteljau_step;
 use rootclip::{Scalar, TriBezier};
 use std::hint::black_box;
 use std::time::Duration;

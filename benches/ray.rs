@@ -19,8 +19,9 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use rootclip::heuristics::newton_ray_patch;
-use rootclip::ray::sample::aimed_rays;
-use rootclip::ray::{cli, intersect_with, Patch, Query, Ray, RayOptions, TensorRoute};
+use rootclip::internals::aimed_rays;
+use rootclip::ray::{intersect, Patch, PatchSpec, Query, Ray, RayOptions};
+use rootclip::solve::SquareRoute;
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -30,7 +31,8 @@ fn setup() -> (Patch, Vec<Ray>) {
     let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/seed000_example1.json"))
         .expect("fixture");
     let v: serde_json::Value = serde_json::from_str(&text).expect("json");
-    let patch = cli::parse_patch(&v["patch"].to_string()).expect("patch");
+    let spec: PatchSpec = serde_json::from_value(v["patch"].clone()).expect("patch");
+    let patch = Patch::from_spec(&spec).expect("patch");
     let rays = aimed_rays(&patch, RAYS, 12.0, 0x9e37_79b9_7f4a_7c15);
     (patch, rays)
 }
@@ -39,23 +41,19 @@ fn bench(c: &mut Criterion) {
     let (patch, rays) = setup();
     let mut g = c.benchmark_group("ray");
     let cases = [
-        ("rect-all", TensorRoute::Rect, Query::All),
-        ("rect-nearest", TensorRoute::Rect, Query::Nearest),
-        ("rect-any", TensorRoute::Rect, Query::Any),
-        ("rect-fat-line-all", TensorRoute::RectFatLine, Query::All),
-        ("rect-hybrid-all", TensorRoute::RectHybrid, Query::All),
-        ("triangles-all", TensorRoute::Triangles, Query::All),
+        ("rect-all", SquareRoute::Rect, Query::All),
+        ("rect-nearest", SquareRoute::Rect, Query::Nearest),
+        ("rect-any", SquareRoute::Rect, Query::Any),
+        ("rect-fat-line-all", SquareRoute::RectFatLine, Query::All),
+        ("rect-hybrid-all", SquareRoute::RectHybrid, Query::All),
+        ("triangles-all", SquareRoute::Triangles, Query::All),
     ];
     for (name, route, query) in cases {
-        let opts = RayOptions {
-            route,
-            query,
-            ..RayOptions::default()
-        };
+        let opts = RayOptions::default().with_route(route).with_query(query);
         g.bench_function(name, |b| {
             b.iter(|| {
                 for r in &rays {
-                    black_box(intersect_with(&patch, r, &opts).expect("valid input"));
+                    black_box(intersect(&patch, r, &opts).expect("valid input"));
                 }
             })
         });

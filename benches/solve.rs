@@ -25,9 +25,10 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use inari::Interval;
-use rootclip::repro::{self, Example};
+use rootclip::internals::repro::{self, Example};
+use rootclip::internals::solve_triangle_f64;
 use rootclip::scalar::rational_to_f64;
-use rootclip::solve::{solve, solve_triangle, solve_triangle_f64, Domain, Method, SolveOptions};
+use rootclip::solve::{solve, solve_bb, Domain, Method, SolveOptions};
 use rootclip::{Scalar, TriBezier};
 use std::hint::black_box;
 use std::time::Duration;
@@ -68,10 +69,11 @@ fn inputs() -> Vec<Input> {
 }
 
 fn options(method: Method) -> SolveOptions {
-    SolveOptions {
-        method,
-        eps: EPS,
-        ..SolveOptions::default()
+    {
+        let mut o = SolveOptions::default();
+        o.method = method;
+        o.eps = EPS;
+        o
     }
 }
 
@@ -83,7 +85,7 @@ fn certified(c: &mut Criterion) {
             let [f, g] = &x.interval;
             let opts = options(method);
             group.bench_with_input(BenchmarkId::new(method.name(), x.name), &opts, |b, opts| {
-                b.iter(|| solve_triangle(black_box(f), black_box(g), opts).expect("valid input"))
+                b.iter(|| solve_bb(black_box(f), black_box(g), opts).expect("valid input"))
             });
         }
     }
@@ -109,21 +111,22 @@ fn rigor(c: &mut Criterion) {
         let [pf, pg] = &x.plain;
         for method in [Method::Bezier, Method::Hc] {
             let probing = options(method);
-            let no_probe = SolveOptions {
-                probe: false,
-                ..probing
+            let no_probe = {
+                let mut o = probing;
+                o.probe = false;
+                o
             };
             report_plain_roots(x, method, &no_probe);
             let name = |variant: &str| format!("{}-{variant}", method.name());
             if method == Method::Hc {
                 group.bench_with_input(BenchmarkId::new(name("certified"), x.name), &probing, |b, opts| {
-                    b.iter(|| solve_triangle(black_box(f), black_box(g), opts).expect("valid input"))
+                    b.iter(|| solve_bb(black_box(f), black_box(g), opts).expect("valid input"))
                 });
             }
             group.bench_with_input(
                 BenchmarkId::new(name("certified-noprobe"), x.name),
                 &no_probe,
-                |b, opts| b.iter(|| solve_triangle(black_box(f), black_box(g), opts).expect("valid input")),
+                |b, opts| b.iter(|| solve_bb(black_box(f), black_box(g), opts).expect("valid input")),
             );
             group.bench_with_input(BenchmarkId::new(name("plain-f64"), x.name), &no_probe, |b, opts| {
                 b.iter(|| solve_triangle_f64(black_box(pf), black_box(pg), opts))
@@ -138,7 +141,7 @@ fn rigor(c: &mut Criterion) {
 fn report_plain_roots(x: &Input, method: Method, opts: &SolveOptions) {
     let [f, g] = &x.interval;
     let [pf, pg] = &x.plain;
-    let roots = solve_triangle(f, g, opts).expect("valid input").roots;
+    let roots = solve_bb(f, g, opts).expect("valid input").roots;
     let centres = solve_triangle_f64(pf, pg, opts);
     let found = roots
         .iter()

@@ -27,8 +27,7 @@
 use glam::DVec3;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
-use rootclip::ray::{default_options, intersect, Patch, Ray, RayOutcome, TensorPatch};
-use rootclip::solve::SolveOptions;
+use rootclip::ray::{intersect, Patch, Ray, RayOptions, RayOutcome, TensorPatch};
 use serde_json::Value;
 use std::error::Error;
 use std::fmt::Write as _;
@@ -58,7 +57,7 @@ fn main() -> Res<()> {
         .into());
     }
     let vertices: Vec<DVec3> = mesh.vertices.iter().copied().step_by(every).collect();
-    let opts = default_options();
+    let opts = RayOptions::default();
 
     let paper_rays = lines_from(paper.light, &vertices);
     let (paper_images, paper_time) = trace(&screen, &paper_rays, &opts, "paper's light");
@@ -349,7 +348,7 @@ struct ScreenPoint {
     miss_distance: f64,
 }
 
-fn trace(screen: &Screen, rays: &[Ray], opts: &SolveOptions, what: &str) -> (Vec<Image>, Duration) {
+fn trace(screen: &Screen, rays: &[Ray], opts: &RayOptions, what: &str) -> (Vec<Image>, Duration) {
     let bar = ProgressBar::new(rays.len() as u64).with_message(what.to_string());
     bar.set_style(ProgressStyle::with_template("{msg}: {bar:40} {pos}/{len} rays, {elapsed}").expect("valid template"));
     let start = Instant::now();
@@ -366,7 +365,7 @@ fn trace(screen: &Screen, rays: &[Ray], opts: &SolveOptions, what: &str) -> (Vec
     (images, time)
 }
 
-fn image_of(screen: &Screen, ray: &Ray, opts: &SolveOptions) -> Image {
+fn image_of(screen: &Screen, ray: &Ray, opts: &RayOptions) -> Image {
     if !screen.may_hit(ray) {
         return Image::Miss { culled: true };
     }
@@ -380,7 +379,7 @@ fn image_of(screen: &Screen, ray: &Ray, opts: &SolveOptions) -> Image {
     let nearest = hits.nearest();
     match nearest.as_slice() {
         [] => Image::Miss { culled: false },
-        [h] if h.certified && !h.t_straddles_zero => {
+        [h] if h.is_certified() && h.bx.t[0] > 0.0 => {
             let (o, d) = (ray.origin(), ray.dir());
             Image::Hit(ScreenPoint {
                 u: h.u,

@@ -19,7 +19,7 @@ mod figures;
 #[path = "hybrid_clipping_report/svg.rs"]
 mod svg;
 
-use rootclip::repro::{self, DiameterCell, Example, RecursionCell, Variant, LG_EPS};
+use rootclip::internals::repro::{self, DiameterCell, Example, RecursionCell, Variant, LG_EPS};
 use rootclip::solve::{solve, Domain, Method, Solution};
 use std::error::Error;
 use std::fmt::Write as _;

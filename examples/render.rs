@@ -27,10 +27,7 @@
 use glam::DVec3;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
-use rootclip::ray::{
-    default_options, intersect_with, Patch, Query, Ray, RayOptions, RayOutcome, TensorPatch, TriPatch,
-};
-use rootclip::solve::SolveOptions;
+use rootclip::ray::{intersect, Patch, Query, Ray, RayOptions, RayOutcome, TensorPatch, TriPatch};
 use std::error::Error;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -47,7 +44,7 @@ const AMBIENT: f64 = 0.15;
 fn main() -> Res<()> {
     let args = Args::parse()?;
     let scene = Scene::build()?;
-    let opts = default_options();
+    let opts = RayOptions::default();
     let camera = Camera::new(args.width, args.height);
     let bar = ProgressBar::new(args.height as u64);
     bar.set_style(ProgressStyle::with_template(
@@ -404,7 +401,7 @@ impl Stats {
     }
 }
 
-fn render_row(scene: &Scene, cam: &Camera, y: usize, shadows: bool, opts: &SolveOptions) -> (Vec<[u8; 3]>, Stats) {
+fn render_row(scene: &Scene, cam: &Camera, y: usize, shadows: bool, opts: &RayOptions) -> (Vec<[u8; 3]>, Stats) {
     let mut st = Stats::default();
     let px = (0..cam.width)
         .map(|x| {
@@ -416,7 +413,7 @@ fn render_row(scene: &Scene, cam: &Camera, y: usize, shadows: bool, opts: &Solve
 }
 
 /// The colour of one primary ray.
-fn shade(scene: &Scene, ray: &Ray, shadows: bool, opts: &SolveOptions, st: &mut Stats) -> [f64; 3] {
+fn shade(scene: &Scene, ray: &Ray, shadows: bool, opts: &RayOptions, st: &mut Stats) -> [f64; 3] {
     st.primary += 1;
     let near = nearest(scene, ray, opts, st);
     if near.doubtful {
@@ -459,7 +456,7 @@ struct Nearest {
     doubtful: bool,
 }
 
-fn nearest(scene: &Scene, ray: &Ray, opts: &SolveOptions, st: &mut Stats) -> Nearest {
+fn nearest(scene: &Scene, ray: &Ray, opts: &RayOptions, st: &mut Stats) -> Nearest {
     let mut order: Vec<(f64, usize)> = scene
         .objects
         .iter()
@@ -477,15 +474,11 @@ fn nearest(scene: &Scene, ray: &Ray, opts: &SolveOptions, st: &mut Stats) -> Nea
             break;
         }
         st.calls += 1;
-        let near = RayOptions {
-            solve: *opts,
-            query: Query::Nearest,
-            ..RayOptions::default()
-        };
-        match intersect_with(&scene.objects[k].patch, ray, &near) {
+        let near = opts.clone().with_query(Query::Nearest);
+        match intersect(&scene.objects[k].patch, ray, &near) {
             Ok(RayOutcome::Hits(h)) => {
                 for hit in &h.hits {
-                    if hit.certified && !hit.t_straddles_zero {
+                    if hit.is_certified() && hit.bx.t[0] > 0.0 {
                         if best.is_none_or(|b| hit.bx.t[1] < b.0) {
                             best = Some((hit.bx.t[1], k, hit.point, hit.normal));
                         }
@@ -511,7 +504,7 @@ fn nearest(scene: &Scene, ray: &Ray, opts: &SolveOptions, st: &mut Stats) -> Nea
 /// Whether anything lies between `p` and the light: `Some(true)` proven
 /// blocked (a certified hit with `t > 0`), `Some(false)` proven free,
 /// `None` undecided.
-fn blocked(scene: &Scene, p: DVec3, opts: &SolveOptions, st: &mut Stats) -> Option<bool> {
+fn blocked(scene: &Scene, p: DVec3, opts: &RayOptions, st: &mut Stats) -> Option<bool> {
     st.shadow += 1;
     let ray = Ray::new(p, scene.to_light).expect("finite, non-zero");
     let mut doubt = false;
@@ -520,19 +513,15 @@ fn blocked(scene: &Scene, p: DVec3, opts: &SolveOptions, st: &mut Stats) -> Opti
             continue;
         }
         st.calls += 1;
-        let any = RayOptions {
-            solve: *opts,
-            query: Query::Any,
-            ..RayOptions::default()
-        };
-        match intersect_with(&o.patch, &ray, &any) {
+        let any = opts.clone().with_query(Query::Any);
+        match intersect(&o.patch, &ray, &any) {
             Ok(RayOutcome::Hits(h)) => {
                 for hit in &h.hits {
-                    if hit.certified && !hit.t_straddles_zero {
+                    if hit.is_certified() && hit.bx.t[0] > 0.0 {
                         return Some(true);
                     }
                     // A region straddling t = 0 is the surface the ray leaves.
-                    if !hit.t_straddles_zero {
+                    if hit.bx.t[0] > 0.0 {
                         st.undecided_regions += 1;
                         doubt = true;
                     }
@@ -600,7 +589,7 @@ impl Report<'_> {
             "{} patches: the Utah teapot's {} bicubic patches (Newell's data, `examples/data/teapot.txt`), a floor \
              of two flat quadratic triangles, a rational quadratic triangle with quarter-circle edges (blue) and a \
              cubic triangular dome (green). Every shaded pixel is the nearest **certified** hit of its primary ray \
-             (`rootclip::ray::intersect_with`, nearest-hit query for primary rays, any-hit for shadow rays: a `(u, v)` box proven to hold exactly one intersection); each patch is \
+             (`rootclip::ray::intersect`, nearest-hit query for primary rays, any-hit for shadow rays: a `(u, v)` box proven to hold exactly one intersection); each patch is \
              first culled by its control net's bounding box. Lambert shading with {AMBIENT} ambient and one shadow \
              ray per lit pixel{}. Magenta marks pixels whose answer is not proven (a degenerate outcome or an \
              undecided region that may be nearer than the certified hit, or an undecided shadow ray).\n",

@@ -21,9 +21,10 @@ use num_traits::{One, Signed, Zero};
 use proptest::collection::vec;
 use proptest::prelude::*;
 use proptest::test_runner::Config;
-use rootclip::poly::l2::{tri_gram, uni_gram};
+use rootclip::internals::interval_contains_rational;
+use rootclip::internals::l2::{tri_gram, uni_gram};
 use rootclip::poly::{tri_len, Direction, TensorBezier, TriBezier, UniBezier};
-use rootclip::scalar::{interval_contains_rational, rational_to_f64, rational_to_interval};
+use rootclip::scalar::{rational_to_f64, rational_to_interval};
 // `rootclip::Scalar` is named by path only: in scope, its `zero`/`one`/`abs`
 // would clash with num-traits' on `BigRational`.
 use rootclip::Polynomial;

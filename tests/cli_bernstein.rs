@@ -116,7 +116,8 @@ fn index(v: &Value, key: &str) -> usize {
 
 fn check_triangle(f: &str, terms: &Terms) {
     let out = bernstein_json(f, "triangle");
-    assert_eq!(keys(&out), ["coefficients", "degree", "domain"]);
+    assert_eq!(keys(&out), ["coefficients", "degree", "domain", "schema_version"]);
+    assert_eq!(out["schema_version"], 1);
     assert_eq!(out["domain"], "triangle");
     let n = degree(terms);
     assert_eq!(out["degree"].as_u64(), Some(n as u64), "{f}");
@@ -135,7 +136,8 @@ fn check_triangle(f: &str, terms: &Terms) {
 
 fn check_square(f: &str, terms: &Terms) {
     let out = bernstein_json(f, "square");
-    assert_eq!(keys(&out), ["coefficients", "degree", "domain"]);
+    assert_eq!(keys(&out), ["coefficients", "degree", "domain", "schema_version"]);
+    assert_eq!(out["schema_version"], 1);
     assert_eq!(out["domain"], "square");
     let (m, n, want) = square_expected(terms);
     assert_eq!(out["degree"], serde_json::json!([m, n]), "{f}");

@@ -18,10 +18,16 @@ use proptest::collection::vec;
 use proptest::prelude::*;
 use proptest::test_runner::Config;
 use rootclip::ray::{
-    cli, default_options, intersect, intersect_with, Degeneracy, Hit, Patch, Query, Ray, RayOptions, RayOutcome,
-    TensorPatch, TensorRoute, TriPatch,
+    intersect, Degeneracy, Hit, Patch, PatchSpec, Query, Ray, RayOptions, RayOutcome, TensorPatch, TriPatch,
 };
+use rootclip::solve::SquareRoute;
 use rootclip::Error;
+
+/// A patch from its JSON spec.
+fn parse_patch(v: &serde_json::Value) -> Patch {
+    let spec: PatchSpec = serde_json::from_value(v.clone()).expect("a patch spec");
+    Patch::from_spec(&spec).expect("a valid patch")
+}
 
 // ---------------------------------------------------------------------------
 // Independent evaluation: explicit Bernstein sums
@@ -143,7 +149,7 @@ fn aimed_ray(patch: &Patch, u0: f64, v0: f64, tilt: [f64; 2], dist: f64) -> Ray 
 }
 
 fn hits_of(patch: &Patch, ray: &Ray) -> Vec<Hit> {
-    match intersect(patch, ray, &default_options()).expect("valid input") {
+    match intersect(patch, ray, &RayOptions::default()).expect("valid input") {
         RayOutcome::Hits(h) => {
             assert!(h.complete);
             h.hits
@@ -160,7 +166,7 @@ fn check_hits(patch: &Patch, ray: &Ray, hits: &[Hit]) {
     for h in hits {
         assert!(h.bx.t[1] >= 0.0, "a hit behind the origin: {h:?}");
         assert!(h.bx.u[0] <= h.u && h.u <= h.bx.u[1] && h.bx.v[0] <= h.v && h.v <= h.bx.v[1]);
-        if !h.certified {
+        if !h.is_certified() {
             continue;
         }
         let q = surface(patch, h.u, h.v);
@@ -181,7 +187,7 @@ fn check_planted(patch: &Patch, ray: &Ray, u0: f64, v0: f64) {
     check_hits(patch, ray, &hits);
     let found = hits
         .iter()
-        .any(|h| h.certified && gap(h.bx.u, u0) <= 1e-9 && gap(h.bx.v, v0) <= 1e-9);
+        .any(|h| h.is_certified() && gap(h.bx.u, u0) <= 1e-9 && gap(h.bx.v, v0) <= 1e-9);
     assert!(found, "planted hit ({u0}, {v0}) not reported certified: {hits:?}");
 }
 
@@ -253,11 +259,11 @@ proptest! {
                 let (u, v) = if reflect { (1.0 - h.u, 1.0 - h.v) } else { (h.u, h.v) };
                 // A hit on the diagonal belongs to both halves: keep it once.
                 if !halves.iter().any(|x| (x.0 - h.t).abs() < 1e-9 && (x.1 - u).abs() < 1e-9 && (x.2 - v).abs() < 1e-9) {
-                    halves.push((h.t, u, v, h.certified));
+                    halves.push((h.t, u, v, h.is_certified()));
                 }
             }
         }
-        let certified_whole: Vec<&Hit> = whole.iter().filter(|h| h.certified).collect();
+        let certified_whole: Vec<&Hit> = whole.iter().filter(|h| h.is_certified()).collect();
         let certified_halves: Vec<_> = halves.iter().filter(|h| h.3).collect();
         prop_assert_eq!(certified_whole.len(), certified_halves.len(), "{:?} vs {:?}", whole, halves);
         for h in certified_whole {
@@ -289,20 +295,20 @@ proptest! {
         let origin = DVec3::new(o[0], o[1], z);
         let aim = DVec3::new(target[0], target[1], -0.25);
         let ray = Ray::new(origin, aim - origin).unwrap();
-        let run = |route, query| match intersect_with(&patch, &ray, &RayOptions { route, query, ..RayOptions::default() }).unwrap() {
+        let run = |route, query| match intersect(&patch, &ray, &{ let mut o = RayOptions::default(); o.route = route; o.query = query; o }).unwrap() {
             RayOutcome::Hits(h) => h.hits,
             other => panic!("unexpected {other:?}"),
         };
-        let rect = run(TensorRoute::Rect, Query::All);
-        let tri = run(TensorRoute::Triangles, Query::All);
-        let fat = run(TensorRoute::RectFatLine, Query::All);
-        let hybrid = run(TensorRoute::RectHybrid, Query::All);
+        let rect = run(SquareRoute::Rect, Query::All);
+        let tri = run(SquareRoute::Triangles, Query::All);
+        let fat = run(SquareRoute::RectFatLine, Query::All);
+        let hybrid = run(SquareRoute::RectHybrid, Query::All);
         check_hits(&patch, &ray, &hybrid);
         check_hits(&patch, &ray, &rect);
         check_hits(&patch, &ray, &tri);
         check_hits(&patch, &ray, &fat);
         let overlap = |a: &Hit, b: &Hit| a.bx.u[0] <= b.bx.u[1] && b.bx.u[0] <= a.bx.u[1] && a.bx.v[0] <= b.bx.v[1] && b.bx.v[0] <= a.bx.v[1];
-        let cert = |h: &[Hit]| h.iter().filter(|x| x.certified).cloned().collect::<Vec<_>>();
+        let cert = |h: &[Hit]| h.iter().filter(|x| x.is_certified()).cloned().collect::<Vec<_>>();
         let (cr, ct) = (cert(&rect), cert(&tri));
         prop_assert_eq!(cr.len(), ct.len(), "rect {:?}\ntri {:?}", rect, tri);
         for h in &cr {
@@ -315,18 +321,17 @@ proptest! {
                 prop_assert!(cr.iter().filter(|x| overlap(h, x)).count() == 1, "{:?} not matched in {:?}", h, rect);
             }
         }
-        let near = run(TensorRoute::Rect, Query::Nearest);
-        match (cr.first(), near.iter().find(|h| h.certified)) {
+        let near = run(SquareRoute::Rect, Query::Nearest);
+        match (cr.first(), near.iter().find(|h| h.is_certified())) {
             (Some(a), Some(b)) => prop_assert!(overlap(a, b) && near.iter().all(|h| h.bx.t[0] <= a.bx.t[1])),
             (a, b) => prop_assert_eq!(a.is_some(), b.is_some()),
         }
-        let any = run(TensorRoute::Rect, Query::Any);
-        for h in any.iter().filter(|h| h.certified) {
+        let any = run(SquareRoute::Rect, Query::Any);
+        for h in any.iter().filter(|h| h.is_certified()) {
             prop_assert!(cr.iter().any(|x| overlap(h, x)));
         }
-        // Any finds a certified hit with t provably ≥ 0 exactly when there is one.
-        let proper = |h: &Hit| h.certified && !h.t_straddles_zero;
-        prop_assert_eq!(any.iter().any(proper), cr.iter().any(proper));
+        // Any finds a certified hit exactly when there is one.
+        prop_assert_eq!(any.iter().any(Hit::is_certified), cr.iter().any(Hit::is_certified));
     }
 
     /// Patches with a collapsed edge (the whole row `i = 0` one point: a
@@ -361,7 +366,7 @@ proptest! {
         let slanted = DVec3::new(tilt[0], tilt[1], -1.5);
         for (origin, dir, t_apex) in [(apex + DVec3::Z, -DVec3::Z, 1.0), (apex - 2.0 * slanted, slanted, 2.0)] {
             let ray = Ray::new(origin, dir).unwrap();
-            let RayOutcome::Hits(h) = intersect(&patch, &ray, &default_options()).unwrap() else {
+            let RayOutcome::Hits(h) = intersect(&patch, &ray, &RayOptions::default()).unwrap() else {
                 panic!("a ray through the collapsed corner is degenerate");
             };
             prop_assert!(h.complete);
@@ -392,7 +397,7 @@ proptest! {
         check_planted(&patch, &aimed_ray(&patch, u0, v0, tilt, 2.0), u0, v0);
         let apex = patch.eval(0.5, 0.0);
         let ray = Ray::new(apex + DVec3::Z, -DVec3::Z).unwrap();
-        let RayOutcome::Hits(h) = intersect(&patch, &ray, &default_options()).unwrap() else {
+        let RayOutcome::Hits(h) = intersect(&patch, &ray, &RayOptions::default()).unwrap() else {
             panic!("a ray through the collapsed edge is degenerate");
         };
         prop_assert!(h.complete);
@@ -442,7 +447,7 @@ fn flat_triangle_hit_at_known_parameters() {
     let hits = hits_of(&patch, &ray);
     assert_eq!(hits.len(), 1);
     let h = &hits[0];
-    assert!(h.certified && h.bx.t[0] <= 2.0 && 2.0 <= h.bx.t[1]);
+    assert!(h.is_certified() && h.bx.t[0] <= 2.0 && 2.0 <= h.bx.t[1]);
     assert!(h.bx.u[0] <= 0.25 && 0.25 <= h.bx.u[1] && h.bx.v[0] <= 0.5 && 0.5 <= h.bx.v[1]);
     assert!((h.normal - DVec3::Z).length() < 1e-12);
     // The ray pointing away: t = −2 is dropped.
@@ -464,7 +469,7 @@ fn two_hits_sorted_by_t() {
     let ray = Ray::new(DVec3::new(-1.0, 0.5, 0.0), DVec3::new(1.0, 0.01, 0.0)).unwrap();
     let hits = hits_of(&patch, &ray);
     check_hits(&patch, &ray, &hits);
-    assert_eq!(hits.iter().filter(|h| h.certified).count(), 2, "{hits:?}");
+    assert_eq!(hits.iter().filter(|h| h.is_certified()).count(), 2, "{hits:?}");
     assert!(hits[0].t < hits[1].t);
 }
 
@@ -478,12 +483,12 @@ fn ray_in_the_plane_of_a_planar_patch_is_degenerate() {
     }
     let patch: Patch = TriPatch::new(2, pts, None).unwrap().into();
     let inside = Ray::new(DVec3::new(-1.0, 0.25, 0.0), DVec3::new(1.0, 0.1, 0.0)).unwrap();
-    let out = intersect(&patch, &inside, &default_options()).unwrap();
+    let out = intersect(&patch, &inside, &RayOptions::default()).unwrap();
     assert_eq!(out, RayOutcome::Degenerate(Degeneracy::ZeroEquation));
     // In the plane but missing the patch: still no false "no hits"; either
     // degenerate or (proven) empty.
     let miss = Ray::new(DVec3::new(-1.0, 5.0, 0.0), DVec3::new(1.0, 0.0, 0.0)).unwrap();
-    match intersect(&patch, &miss, &default_options()).unwrap() {
+    match intersect(&patch, &miss, &RayOptions::default()).unwrap() {
         RayOutcome::Hits(h) => assert!(h.complete && h.hits.is_empty()),
         RayOutcome::Degenerate(_) => {}
     }
@@ -500,7 +505,7 @@ fn ray_along_a_ruling_is_not_no_hits() {
     ];
     let patch: Patch = TensorPatch::new(1, 1, pts, None).unwrap().into();
     let ray = Ray::new(DVec3::new(-1.0, 0.5, 0.0), DVec3::new(1.0, 0.0, 0.0)).unwrap();
-    match intersect(&patch, &ray, &default_options()).unwrap() {
+    match intersect(&patch, &ray, &RayOptions::default()).unwrap() {
         RayOutcome::Hits(h) => assert!(!h.hits.is_empty(), "a curve of hits reported as none"),
         RayOutcome::Degenerate(_) => {}
     }
@@ -558,7 +563,7 @@ fn tiny_and_huge_directions_give_the_same_hit() {
         let hits = hits_of(&patch, &ray);
         assert_eq!(hits.len(), 1, "scale {s}");
         let h = &hits[0];
-        assert!(h.certified);
+        assert!(h.is_certified());
         let q = surface(&patch, h.u, h.v);
         // |d|² overflows or underflows at these scales: divide twice by |d|.
         let big = ray.dir().abs().max_element();
@@ -572,57 +577,6 @@ fn tiny_and_huge_directions_give_the_same_hit() {
     }
 }
 
-#[test]
-fn cli_json_and_errors() {
-    let dir = std::env::temp_dir().join(format!("rootclip_ray_cli_{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let patch = dir.join("patch.json");
-    std::fs::write(
-        &patch,
-        r#"{"type":"triangle","degree":1,"points":[[0,0,0],[1,0,0],[0,1,0]]}"#,
-    )
-    .unwrap();
-    let rays = dir.join("rays.txt");
-    std::fs::write(&rays, "# two rays\n0.25 0.5 1  0 0 -1\n5 5 1 0 0 -1\n").unwrap();
-    let args = cli::RayArgs {
-        patch: patch.display().to_string(),
-        rays: Some(rays.display().to_string()),
-        json: true,
-        ..Default::default()
-    };
-    let out: serde_json::Value = serde_json::from_str(&cli::run(&args).unwrap()).unwrap();
-    let list = out["rays"].as_array().unwrap();
-    assert_eq!(list.len(), 2);
-    assert_eq!(list[0]["hits"].as_array().unwrap().len(), 1);
-    assert_eq!(list[0]["hits"][0]["certified"], true);
-    assert_eq!(list[1]["complete"], true);
-    assert!(list[1]["hits"].as_array().unwrap().is_empty());
-    let single = cli::RayArgs {
-        origin: Some("0.25,0.5,1".into()),
-        dir: Some("0,0,-1".into()),
-        rays: None,
-        json: false,
-        nearest: true,
-        ..args.clone()
-    };
-    assert!(cli::run(&single).unwrap().starts_with("ray 0: 1 hit(s), complete"));
-    let both = cli::RayArgs {
-        origin: Some("0,0,0".into()),
-        dir: Some("0,0,1".into()),
-        ..args.clone()
-    };
-    assert!(matches!(cli::run(&both), Err(Error::Shape(_))));
-    std::fs::write(&patch, r#"{"type":"tensor","degree":[1,1],"points":[[0,0,0]]}"#).unwrap();
-    assert!(matches!(cli::run(&args), Err(Error::Shape(_))));
-    std::fs::write(
-        &patch,
-        r#"{"type":"triangle","degree":1,"points":[[0,0,0],[1,0,0],[0,1,0]],"weights":[1,-1,1]}"#,
-    )
-    .unwrap();
-    assert!(matches!(cli::run(&args), Err(Error::Degenerate(_))));
-    std::fs::remove_dir_all(&dir).ok();
-}
-
 /// Seed 000's Example 1 (fixture file): the simple hit at the paper's
 /// `(u, v)` (9 digits), and the tangential ray of its Example 3 reported as an
 /// undecided region around `(0.5, 0.5)`, never as a certified hit or none.
@@ -631,7 +585,7 @@ fn seed000_example1_fixture() {
     let text =
         std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/seed000_example1.json")).unwrap();
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
-    let patch = cli::parse_patch(&v["patch"].to_string()).unwrap();
+    let patch = parse_patch(&v["patch"]);
     let vec3 =
         |x: &serde_json::Value| DVec3::new(x[0].as_f64().unwrap(), x[1].as_f64().unwrap(), x[2].as_f64().unwrap());
     for r in v["rays"].as_array().unwrap() {
@@ -642,7 +596,7 @@ fn seed000_example1_fixture() {
         assert_eq!(hits.len(), 1, "{hits:?}");
         let h = &hits[0];
         assert!(gap(h.bx.u, pu) <= 1e-9 && gap(h.bx.v, pv) <= 1e-9, "{h:?}");
-        assert_eq!(h.certified, r["kind"] == "simple");
+        assert_eq!(h.is_certified(), r["kind"] == "simple");
     }
 }
 
@@ -657,8 +611,8 @@ fn cli_batch_queries_and_routes() {
     std::fs::create_dir_all(&dir).unwrap();
     let patch_path = dir.join("patch.json");
     std::fs::write(&patch_path, v["patch"].to_string()).unwrap();
-    let patch = cli::parse_patch(&v["patch"].to_string()).unwrap();
-    let rays = rootclip::ray::sample::aimed_rays(&patch, 60, 12.0, 7);
+    let patch = parse_patch(&v["patch"]);
+    let rays = rootclip::internals::aimed_rays(&patch, 60, 12.0, 7);
     let text: String = rays
         .iter()
         .map(|r| {
@@ -689,7 +643,7 @@ fn cli_batch_queries_and_routes() {
     assert_eq!(all.len(), rays.len());
     let t_of = |h: &serde_json::Value| h["t"].as_f64().unwrap();
     for (k, (entry, ray)) in all.iter().zip(&rays).enumerate() {
-        let RayOutcome::Hits(lib) = intersect(&patch, ray, &default_options()).unwrap() else {
+        let RayOutcome::Hits(lib) = intersect(&patch, ray, &RayOptions::default()).unwrap() else {
             panic!("ray {k} degenerate")
         };
         let hits = entry["hits"].as_array().unwrap();
@@ -769,11 +723,11 @@ fn flat_patches_at_the_rounding_floor_are_settled_exactly() {
                         _ => ex >= zero && ey >= zero && &ex + &ey <= one,
                     };
                     let real = in_domain && z >= 0.0;
-                    let out = intersect(patch, &ray, &default_options()).unwrap();
+                    let out = intersect(patch, &ray, &RayOptions::default()).unwrap();
                     let RayOutcome::Hits(h) = out else {
                         panic!("{name} {x} {y} {z}: {out:?}")
                     };
-                    let certified = h.hits.iter().filter(|h| h.certified).count();
+                    let certified = h.hits.iter().filter(|h| h.is_certified()).count();
                     assert!(
                         certified <= usize::from(real),
                         "{name} ({x}, {y}, {z}): false certificate {h:?}"

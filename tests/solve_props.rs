@@ -35,7 +35,7 @@ use num_traits::{One, Signed, ToPrimitive, Zero};
 use proptest::collection::vec;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
-use rootclip::solve::{solve, Box2, Domain, Method, Root, Solution, SolveOptions, SquareRoute};
+use rootclip::solve::{solve, Box2, Domain, Method, Solution, SolveOptions, SquareRoute};
 use rootclip::{Error, Polynomial};
 
 type Q = BigRational;
@@ -298,17 +298,19 @@ const BUDGET: usize = 20_000;
 
 /// Default options with the test budget.
 fn default_opts() -> SolveOptions {
-    SolveOptions {
-        max_boxes: BUDGET,
-        ..SolveOptions::default()
+    {
+        let mut o = SolveOptions::default();
+        o.max_boxes = BUDGET;
+        o
     }
 }
 
 fn opts(method: Method, eps: f64) -> SolveOptions {
-    SolveOptions {
-        method,
-        eps,
-        ..default_opts()
+    {
+        let mut o = default_opts();
+        o.method = method;
+        o.eps = eps;
+        o
     }
 }
 
@@ -328,7 +330,7 @@ fn check_contract(k: &Known, dom: Domain, sol: &Solution, ctx: &str) -> Result<V
     let slack = qf(1e-14);
     let mut held: Vec<usize> = Vec::new();
     for r in &sol.roots {
-        prop_assert!(r.certified && well_formed(&r.bx), "bad root entry {:?}\n{}", r.bx, ctx);
+        prop_assert!(well_formed(&r.bx), "bad root entry {:?}\n{}", r.bx, ctx);
         prop_assert!(r.bx.contains(r.u, r.v), "midpoint outside its box {:?}\n{}", r.bx, ctx);
         let b = qbox(&r.bx);
         let inside: Vec<usize> = (0..k.roots.len()).filter(|&i| box_has(&b, &k.roots[i].p)).collect();
@@ -799,7 +801,7 @@ fn check_dense(
     let sys = ExactSystem::new(f, g);
     let mut encl: Vec<[Iv; 2]> = Vec::new();
     for r in &sol.roots {
-        prop_assert!(r.certified && well_formed(&r.bx), "bad root entry {:?}\n{}", r.bx, ctx);
+        prop_assert!(well_formed(&r.bx), "bad root entry {:?}\n{}", r.bx, ctx);
         let b = qbox(&r.bx);
         prop_assert!(!box_outside(&b, dom), "root box {:?} outside the domain\n{}", r.bx, ctx);
         let mid = [qf(r.u), qf(r.v)];
@@ -1529,7 +1531,7 @@ fn degenerate_inputs() {
     }
     for eps in [0.0, -1e-6, f64::NAN, f64::INFINITY] {
         let r = solve(&p("u - v"), &p("u + v - 1/2"), d, &opts(Method::Hc, eps));
-        assert!(matches!(r, Err(Error::Shape(_))), "eps {eps}: {r:?}");
+        assert!(matches!(r, Err(Error::InvalidOption(_))), "eps {eps}: {r:?}");
     }
     // A non-zero constant: no roots, complete.
     let sol = solve(&p("3/7"), &p("u - v"), d, &o).expect("a constant is not degenerate");
@@ -1580,14 +1582,7 @@ fn oracles_reject_false_claims() {
     let mut s = solve(&k3.f, &k3.g, d, &o).expect("solves");
     assert!(check_contract(&k3, d, &s, &ctx).is_ok() && s.roots.is_empty());
     let bx = s.clusters[0].bx;
-    s.roots.push(Root {
-        u: 0.25,
-        v: 0.25,
-        bx,
-        certified: true,
-        on_boundary: false,
-        diameters: Vec::new(),
-    });
+    s.roots.push(rootclip::internals::root(0.25, 0.25, bx, false));
     rejects(&k3, s, "a certified double root");
 }
 
@@ -1619,9 +1614,10 @@ fn dense_oracle_rejects_false_claims() {
 
 /// The square through the native rectangle solver ([`SquareRoute::Rect`]).
 fn rect_opts() -> SolveOptions {
-    SolveOptions {
-        square_route: SquareRoute::Rect,
-        ..default_opts()
+    {
+        let mut o = default_opts();
+        o.square_route = SquareRoute::Rect;
+        o
     }
 }
 
@@ -1660,17 +1656,19 @@ proptest! {
 
 /// The rectangle route with fat-line clipping ([`SquareRoute::RectFatLine`]).
 fn fat_line_opts() -> SolveOptions {
-    SolveOptions {
-        square_route: SquareRoute::RectFatLine,
-        ..default_opts()
+    {
+        let mut o = default_opts();
+        o.square_route = SquareRoute::RectFatLine;
+        o
     }
 }
 
 /// The rectangle route with hybrid clipping ([`SquareRoute::RectHybrid`]).
 fn hybrid_opts() -> SolveOptions {
-    SolveOptions {
-        square_route: SquareRoute::RectHybrid,
-        ..default_opts()
+    {
+        let mut o = default_opts();
+        o.square_route = SquareRoute::RectHybrid;
+        o
     }
 }
 

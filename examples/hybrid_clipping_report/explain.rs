@@ -5,13 +5,13 @@ use super::*;
 use inari::Interval;
 use num_rational::BigRational;
 use num_traits::Zero;
-use rootclip::poly::TriBall;
-use rootclip::solve::driver::{self, Limits, Probe};
-use rootclip::solve::fatcurve::ClipBounds;
-use rootclip::solve::method::{clip_bounds, preprocess, preprocess_general};
-use rootclip::solve::num::GeoIv;
-use rootclip::solve::solve_triangle;
-use rootclip::solve::tribox::TriBox;
+use rootclip::internals::ball::TriBall;
+use rootclip::internals::driver::{self, Limits, Probe};
+use rootclip::internals::fatcurve::ClipBounds;
+use rootclip::internals::method::{clip_bounds, preprocess, preprocess_general};
+use rootclip::internals::num::GeoIv;
+use rootclip::internals::solve_triangle;
+use rootclip::internals::tribox::TriBox;
 use rootclip::{Scalar, TriBezier};
 
 /// `f`, `g` on the unit triangle, enclosed, and exact.

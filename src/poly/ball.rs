@@ -40,7 +40,7 @@
 use super::l2;
 use super::triangle::{tri_index, tri_len, Bary, TriBezier};
 use crate::error::{Error, Result};
-use crate::scalar::{iv, MatrixKey, Scalar, Sign};
+use crate::scalar::{iv, MatrixCache, MatrixKey, Scalar, Sign};
 use inari::Interval;
 use num_rational::BigRational;
 use smallvec::SmallVec;

@@ -271,6 +271,36 @@ impl Polynomial {
         }
         TensorBezier::on_unit_square(m, n, coeffs).expect("exact coefficients are finite")
     }
+    /// The monomial form of a tensor BB polynomial on the unit square:
+    /// `Σ_ij c_ij C(m,i) u^i (1−u)^(m−i) C(n,j) v^j (1−v)^(n−j)`, exactly.
+    pub fn from_square(f: &TensorBezier<BigRational>) -> Self {
+        let (m, n) = f.degree();
+        // B^k_i(x) = C(k,i) x^i (1 − x)^(k−i) = Σ_p C(k,i) C(k−i,p) (−1)^p x^(i+p).
+        let basis = |k: usize, i: usize| -> Vec<(u32, BigRational)> {
+            (0..=k - i)
+                .map(|p| {
+                    let c = BigRational::from_integer(binomial(k, i) * binomial(k - i, p));
+                    ((i + p) as u32, if p % 2 == 1 { -c } else { c })
+                })
+                .collect()
+        };
+        let mut out = Self::zero();
+        for i in 0..=m {
+            let bu = basis(m, i);
+            for j in 0..=n {
+                let c = f.coeff(i, j);
+                if c.is_zero() {
+                    continue;
+                }
+                for (a, cu) in &bu {
+                    for (b, cv) in basis(n, j) {
+                        out.add_term((*a, b), c * cu * cv);
+                    }
+                }
+            }
+        }
+        out
+    }
 
     /// The monomial form of a BB polynomial on the unit triangle (the inverse
     /// of [`Self::to_triangle`]), for any degree.

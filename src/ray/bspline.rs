@@ -33,7 +33,7 @@
 //! # Hits
 //! [`intersect_bspline`] culls every piece whose control-net bounding box
 //! (enlarged by `1e-9` of its size; the convex hull property makes this
-//! conservative) the ray provably misses for `t ≥ 0`, intersects the others
+//! conservative) the ray provably misses for `t` in the range, intersects the others
 //! with [`intersect`](super::intersect), and maps each `(u, v)` box from the
 //! piece's `[0, 1]²` to knot parameters by `u = u₀ + (u₁ − u₀)·s` in interval
 //! arithmetic (outward). A certified box then holds exactly one root of its
@@ -57,10 +57,11 @@
 //! `complete` only if every piece finished within its budget.
 
 mod exact;
-pub mod merge;
+mod merge;
 
-use super::patch::{Patch, TensorPatch, MAX_DEGREE};
-use super::{Degeneracy, Hit, HitBox, Query, Ray, RayHits, RayOptions, RayOutcome};
+use super::bezier::{intersect_bezier, select, sort_by_t, BezierRef};
+use super::patch::{TensorPatch, MAX_DEGREE};
+use super::{Degeneracy, Hit, HitBox, HitStatus, Query, Ray, RayHits, RayOptions, RayOutcome};
 use crate::error::{Error, Result};
 use crate::poly::TensorBezier;
 use crate::scalar::{interval, point};
@@ -68,7 +69,7 @@ use glam::DVec3;
 use inari::Interval;
 
 /// Refined control nets above this many entries are refused ([`Error::TooLarge`]).
-pub const MAX_REFINED_NET: usize = 4_000_000;
+pub(crate) const MAX_REFINED_NET: usize = 4_000_000;
 
 /// A B-spline or NURBS surface of bidegree `(p, q)`; see the module docs for
 /// the formula. Built once, it holds its Bézier pieces.
@@ -92,9 +93,8 @@ pub struct BsplineSurface {
 /// `u = u₀ + (u₁ − u₀)·s`, `v = v₀ + (v₁ − v₀)·t`.
 #[derive(Clone, Debug)]
 pub struct BezierPiece {
-    /// Always [`Patch::Tensor`] (stored as a `Patch` so that every ray can
-    /// borrow it for [`intersect`](super::intersect) without a copy).
-    patch: Patch,
+    /// The piece on `[0, 1]²`.
+    patch: TensorPatch,
     u: [f64; 2],
     v: [f64; 2],
     /// Bounding box of the control points.
@@ -106,8 +106,8 @@ pub struct BezierPiece {
 }
 
 impl BezierPiece {
-    /// The piece on `[0, 1]²`, a [`Patch::Tensor`] of bidegree `(p, q)`.
-    pub fn patch(&self) -> &Patch {
+    /// The piece on `[0, 1]²`, a tensor patch of bidegree `(p, q)`.
+    pub fn patch(&self) -> &TensorPatch {
         &self.patch
     }
 
@@ -471,7 +471,7 @@ impl BezierPiece {
         let hom = [0, 1, 2, 3].map(|c| TensorBezier::new(p, q, inet.c[c].coeffs().to_vec(), rect(u), rect(v)));
         let [a, b, c, d] = hom;
         Ok(Self {
-            patch: Patch::Tensor(tensor),
+            patch: tensor,
             u,
             v,
             lo,
@@ -554,25 +554,25 @@ fn insert_knot<const D: usize>(knots: &mut Vec<f64>, ctrl: &mut Vec<Vec<[f64; D]
 // Hits
 // ---------------------------------------------------------------------------
 
-/// Every hit of `ray` with the B-spline/NURBS `surface` for `t ≥ 0`, in knot
+/// Every hit of `ray` with the B-spline/NURBS `surface` for `t` in the range, in knot
 /// parameters, sorted by `t`; see the module docs for the culling, the
 /// mapping, the merge of duplicates at knot lines and the degenerate cases.
 /// Each piece is solved with `opts` (budgets are per piece).
 ///
 /// ```
 /// use glam::DVec3;
-/// use rootclip::ray::{default_options, intersect, BsplineSurface, Patch, Ray, RayOutcome};
+/// use rootclip::ray::{intersect, BsplineSurface, Patch, Ray, RayOptions, RayOutcome};
 /// // A biquadratic bump over [0, 3] × [0, 1], clamped, three pieces in u.
 /// let ku = vec![0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 3.0, 3.0];
 /// let kv = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
 /// let pts = (0..5).flat_map(|i| (0..3).map(move |j| DVec3::new(i as f64, j as f64, ((i + j) % 2) as f64))).collect();
 /// let s = BsplineSurface::new((2, 2), ku, kv, pts, None).unwrap();
 /// let ray = Ray::new(s.eval(1.3, 0.6) + DVec3::Z, -DVec3::Z).unwrap();
-/// let RayOutcome::Hits(h) = intersect(&Patch::from(s), &ray, &default_options()).unwrap() else { panic!() };
-/// assert!(h.complete && h.hits.len() == 1 && h.hits[0].certified);
+/// let RayOutcome::Hits(h) = intersect(&Patch::from(s), &ray, &RayOptions::default()).unwrap() else { panic!() };
+/// assert!(h.complete && h.hits.len() == 1 && h.hits[0].is_certified());
 /// assert!(h.hits[0].bx.u[0] <= 1.3 + 1e-12 && 1.3 - 1e-12 <= h.hits[0].bx.u[1]);
 /// ```
-pub fn intersect_bspline(surface: &BsplineSurface, ray: &Ray, opts: &RayOptions) -> Result<RayOutcome> {
+pub(crate) fn intersect_bspline(surface: &BsplineSurface, ray: &Ray, opts: &RayOptions) -> Result<RayOutcome> {
     // Each piece answers `All` (or `Any`, which may stop the loop); the
     // query is applied to the merged list.
     let piece_opts = RayOptions {
@@ -586,10 +586,10 @@ pub fn intersect_bspline(surface: &BsplineSurface, ray: &Ray, opts: &RayOptions)
     let mut found = Vec::new();
     let (mut complete, mut unresolved) = (true, false);
     for (k, piece) in surface.pieces.iter().enumerate() {
-        if !box_may_meet(piece.lo, piece.hi, ray) {
+        if !box_may_meet(piece.lo, piece.hi, ray, opts.t_range) {
             continue;
         }
-        let hits = match super::intersect_with(&piece.patch, ray, &piece_opts)? {
+        let hits = match intersect_bezier(BezierRef::Tensor(&piece.patch), ray, &piece_opts)? {
             RayOutcome::Hits(h) => h.hits,
             RayOutcome::Degenerate(Degeneracy::ZeroEquation) => {
                 return Ok(RayOutcome::Degenerate(Degeneracy::ZeroEquation))
@@ -604,48 +604,50 @@ pub fn intersect_bspline(surface: &BsplineSurface, ray: &Ray, opts: &RayOptions)
         // carries knot-insertion error) is settled on the exact net.
         let hits: Vec<Hit> = hits
             .into_iter()
-            .filter_map(|h| settle_on_edge(surface, piece, ray, h))
+            .filter_map(|h| settle_on_edge(surface, piece, ray, h, opts.t_range))
             .collect();
-        let done = opts.query == Query::Any && hits.iter().any(|h| h.certified && !h.t_straddles_zero);
+        let done = opts.query == Query::Any && hits.iter().any(Hit::is_certified);
         found.extend(hits.into_iter().map(|h| (to_knot_hit(piece, h), k)));
         if done {
             break;
         }
     }
-    let mut hits = merge::merge_knot_line_duplicates(surface, ray, found);
-    hits.sort_by(|a, b| a.t.total_cmp(&b.t).then(a.u.total_cmp(&b.u)).then(a.v.total_cmp(&b.v)));
+    let mut hits = merge::merge_knot_line_duplicates(surface, ray, found, opts.t_range);
+    sort_by_t(&mut hits);
     Ok(if unresolved {
         RayOutcome::Degenerate(Degeneracy::Unresolved(RayHits { complete, hits }))
     } else {
-        super::select(&mut hits, opts.query);
+        select(&mut hits, opts.query);
         RayOutcome::Hits(RayHits { complete: true, hits })
     })
 }
 
-/// A piece's hit, settled in exact arithmetic if it is [`Hit::on_edge`]:
-/// certified if its root is on the piece at `t ≥ 0`, `None` if it is off it
-/// or behind the origin, unchanged if undecided.
+/// A piece's hit, settled in exact arithmetic if it is undecided only at the
+/// piece's edge ([`UndecidedReason::Boundary`](crate::solve::UndecidedReason::Boundary)):
+/// certified if its root is on the piece with `t` in the range, `None` if it
+/// is off it or out of range, unchanged if undecided.
 ///
 /// A settled hit's box is cut to the piece (past its edge the surface is
 /// another piece, which may hold a hit of its own within the box). A root
 /// exactly on an interior knot line is a root of both neighbouring pieces;
 /// it is kept by the piece below the line only.
-fn settle_on_edge(surface: &BsplineSurface, piece: &BezierPiece, ray: &Ray, h: Hit) -> Option<Hit> {
+fn settle_on_edge(surface: &BsplineSurface, piece: &BezierPiece, ray: &Ray, h: Hit, range: [f64; 2]) -> Option<Hit> {
     use crate::solve::settle::{Edge, Settled, Shape};
     use crate::solve::Box2;
-    if !h.on_edge {
+    if !h.on_edge() {
         return Some(h);
     }
     let (p, q) = surface.degree;
-    let Some(sys) = exact::exact_piece_net(surface, piece)
-        .and_then(|net| super::settle::system_of_net(Shape::Tensor(p, q), &net, ray))
+    let check_hi = h.bx.t[1] > range[1] || h.bx.t[1].is_nan();
+    let Some(systems) = exact::exact_piece_net(surface, piece)
+        .and_then(|net| super::settle::systems_of_net(Shape::Tensor(p, q), &net, ray, range, check_hi))
     else {
         return Some(h);
     };
     let bx = Box2 { u: h.bx.u, v: h.bx.v };
-    match sys.settle(bx) {
+    match super::settle::settle_all(&systems, bx) {
         Settled::Inside => {
-            let on = sys.root_edges(bx);
+            let on = systems[0].root_edges(bx);
             let below_line = (on.contains(&Edge::U0) && piece.u[0] > surface.breaks_u[0])
                 || (on.contains(&Edge::V0) && piece.v[0] > surface.breaks_v[0]);
             if below_line {
@@ -653,12 +655,11 @@ fn settle_on_edge(surface: &BsplineSurface, piece: &BezierPiece, ray: &Ray, h: H
             }
             let clamp = |x: [f64; 2]| [x[0].max(0.0), x[1].min(1.0)];
             Some(Hit {
-                certified: true,
-                on_edge: false,
+                status: HitStatus::Certified,
                 bx: HitBox {
                     u: clamp(h.bx.u),
                     v: clamp(h.bx.v),
-                    t: [h.bx.t[0].max(0.0), h.bx.t[1]],
+                    t: [h.bx.t[0].max(range[0]), h.bx.t[1].min(range[1])],
                 },
                 ..h
             })
@@ -668,16 +669,17 @@ fn settle_on_edge(surface: &BsplineSurface, piece: &BezierPiece, ray: &Ray, h: H
     }
 }
 
-/// `false` only if the ray provably misses, for `t ≥ 0`, the box `[lo, hi]`
-/// enlarged by `1e-9` of its size (slab test in interval arithmetic).
-fn box_may_meet(lo: DVec3, hi: DVec3, ray: &Ray) -> bool {
+/// `false` only if the ray provably misses, for `t` in `range`, the box
+/// `[lo, hi]` enlarged by `1e-9` of its size (slab test in interval
+/// arithmetic).
+fn box_may_meet(lo: DVec3, hi: DVec3, ray: &Ray, range: [f64; 2]) -> bool {
     let scale = (hi - lo)
         .max_element()
         .max(lo.abs().max_element())
         .max(hi.abs().max_element());
     let pad = 1e-9 * scale + f64::MIN_POSITIVE;
     let (o, d) = (ray.origin(), ray.dir());
-    let (mut enter, mut exit) = (0.0f64, f64::INFINITY);
+    let (mut enter, mut exit) = (range[0], range[1]);
     for c in 0..3 {
         let (l, h) = (lo[c] - pad, hi[c] + pad);
         if d[c] == 0.0 {

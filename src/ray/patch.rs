@@ -7,7 +7,6 @@
 //! reduced system and the enclosure of `t`). The interval net encloses the
 //! exact products `w·x` of the input floats.
 
-use super::bspline::BsplineSurface;
 use crate::error::{Error, Result};
 use crate::poly::{tri_len, Direction, TensorBezier, TriBezier};
 use crate::scalar::iv::{down, up, Iv};
@@ -49,40 +48,6 @@ pub struct TensorPatch {
     /// The patch is exactly its `points` and `weights` (false once
     /// [`TensorPatch::widen`] made it stand for nearby nets).
     exact: bool,
-}
-
-/// A Bézier patch of either kind, or a B-spline/NURBS surface (intersected
-/// piece by piece, see [`super::bspline`]).
-// Patches are built once and borrowed by every ray: the size difference of
-// the variants costs nothing, boxing would cost an indirection per ray.
-#[allow(clippy::large_enum_variant)]
-#[derive(Clone, Debug)]
-pub enum Patch {
-    /// A triangular patch on the unit triangle.
-    Triangle(TriPatch),
-    /// A tensor-product patch on the unit square.
-    Tensor(TensorPatch),
-    /// A B-spline or NURBS surface on its knot domain (boxed: it owns its
-    /// Bézier pieces).
-    Bspline(Box<BsplineSurface>),
-}
-
-impl From<TriPatch> for Patch {
-    fn from(p: TriPatch) -> Self {
-        Patch::Triangle(p)
-    }
-}
-
-impl From<TensorPatch> for Patch {
-    fn from(p: TensorPatch) -> Self {
-        Patch::Tensor(p)
-    }
-}
-
-impl From<BsplineSurface> for Patch {
-    fn from(s: BsplineSurface) -> Self {
-        Patch::Bspline(Box::new(s))
-    }
 }
 
 /// The homogeneous coordinate polynomials `(w·x, w·y, w·z, w)`.
@@ -265,6 +230,13 @@ impl TriPatch {
         partials_f64(&self.net, u, v)
     }
 
+    /// The unit normal `S_u × S_v / |S_u × S_v|` in `f64` (zero where the
+    /// partials are parallel).
+    pub fn normal(&self, u: f64, v: f64) -> DVec3 {
+        let (su, sv) = self.partials(u, v);
+        su.cross(sv).normalize_or_zero()
+    }
+
     pub(crate) fn inet(&self) -> &Net<TriBezier<Interval>> {
         &self.inet
     }
@@ -365,6 +337,13 @@ impl TensorPatch {
         (su, sv)
     }
 
+    /// The unit normal `S_u × S_v / |S_u × S_v|` in `f64` (zero where the
+    /// partials are parallel).
+    pub fn normal(&self, u: f64, v: f64) -> DVec3 {
+        let (_, su, sv) = self.frame(u, v);
+        su.cross(sv).normalize_or_zero()
+    }
+
     /// `(S, ∂S/∂u, ∂S/∂v)` in `f64` in one pass: de Casteljau with
     /// derivatives on each homogeneous coordinate (no allocation for degrees
     /// up to [`MAX_DEGREE`]), then the quotient rule.
@@ -407,55 +386,8 @@ impl TensorPatch {
     }
 }
 
-impl Patch {
-    /// `S(u, v)` in `f64`.
-    pub fn eval(&self, u: f64, v: f64) -> DVec3 {
-        match self {
-            Patch::Triangle(p) => p.eval(u, v),
-            Patch::Tensor(p) => p.eval(u, v),
-            Patch::Bspline(s) => s.eval(u, v),
-        }
-    }
-
-    /// `(∂S/∂u, ∂S/∂v)` in `f64`.
-    pub fn partials(&self, u: f64, v: f64) -> (DVec3, DVec3) {
-        match self {
-            Patch::Triangle(p) => p.partials(u, v),
-            Patch::Tensor(p) => p.partials(u, v),
-            Patch::Bspline(s) => s.partials(u, v),
-        }
-    }
-
-    /// The unit normal `S_u × S_v / |S_u × S_v|` in `f64`; the zero vector
-    /// where the partials are parallel (a collapsed corner or edge).
-    pub fn normal(&self, u: f64, v: f64) -> DVec3 {
-        let (su, sv) = self.partials(u, v);
-        su.cross(sv).normalize_or_zero()
-    }
-
-    /// The point and the unit normal at `(u, v)` (one pass for tensors).
-    pub fn point_and_normal(&self, u: f64, v: f64) -> (DVec3, DVec3) {
-        match self {
-            Patch::Tensor(p) => {
-                let (x, su, sv) = p.frame(u, v);
-                (x, su.cross(sv).normalize_or_zero())
-            }
-            _ => (self.eval(u, v), self.normal(u, v)),
-        }
-    }
-
-    /// The control points.
-    pub fn points(&self) -> &[DVec3] {
-        match self {
-            Patch::Triangle(p) => p.points(),
-            Patch::Tensor(p) => p.points(),
-            Patch::Bspline(s) => s.points(),
-        }
-    }
-}
-
 /// Degrees above this are refused (the solver's work grows like `n⁴`).
-pub const MAX_DEGREE: usize = 40;
+pub(crate) const MAX_DEGREE: usize = 40;
 
 fn lift<P>(net: Net<Result<P>>) -> Result<Net<P>> {
     let [a, b, c, d] = net.c;

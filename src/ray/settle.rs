@@ -1,6 +1,6 @@
 //! The ray reduction in exact arithmetic, for [`crate::solve::settle`]: a
 //! certified root within rounding of the patch's edge, or at `t` within
-//! rounding of 0, is settled exactly.
+//! rounding of an end of the `t` range, is settled exactly.
 //!
 //! For a patch whose control points and weights are the given floats (not a
 //! B-spline piece, whose net carries knot-insertion error), the ray's planes
@@ -10,9 +10,11 @@
 //! system has the same roots as the one solved in floating point). Then
 //! `f_k = Σ w_ij n_k·(P_ij − o) B_ij` and the numerator of `t`,
 //! `h = Σ w_ij d·(P_ij − o) B_ij` (`t = h / (W |d|²)`, `W > 0`), have exact
-//! rational coefficients.
+//! rational coefficients; so do `h − t₀|d|²W` and `t₁|d|²W − h`, whose signs
+//! say `t ≥ t₀` and `t ≤ t₁` for the ends of a range.
 
-use super::{Patch, Ray};
+use super::bezier::BezierRef;
+use super::Ray;
 use crate::solve::settle::{ExactSystem, Settled, Shape};
 use crate::solve::Box2;
 use glam::DVec3;
@@ -21,31 +23,82 @@ use num_traits::{One, Zero};
 
 type Q = BigRational;
 
-/// Settles the root certified in `bx`: [`Settled::Inside`] is a hit (on the
-/// closed patch, `t ≥ 0`), [`Settled::Outside`] a miss; undecided for
-/// patches that are not exactly their floats.
-pub(super) fn settle(patch: &Patch, ray: &Ray, bx: Box2) -> Settled {
-    match exact_system(patch, ray) {
-        Some(sys) => sys.settle(bx),
-        None => Settled::Undecided,
-    }
-}
-
-fn exact_system(patch: &Patch, ray: &Ray) -> Option<ExactSystem> {
-    let (shape, points, weights) = match patch {
-        Patch::Triangle(p) => (Shape::Triangle(p.degree()), p.points(), p.weights()),
-        Patch::Tensor(p) if p.net_is_exact() => {
+/// Settles the root certified in `bx` for the `t` range `[lo, hi]`:
+/// [`Settled::Inside`] is a hit (on the closed patch, `t` in the range),
+/// [`Settled::Outside`] a miss; undecided for patches that are not exactly
+/// their floats. `check_hi`: the upper end needs a proof too (the lower end,
+/// when finite, is always settled, with the domain).
+pub(super) fn settle(b: BezierRef, ray: &Ray, bx: Box2, range: [f64; 2], check_hi: bool) -> Settled {
+    let (shape, points, weights) = match b {
+        BezierRef::Tri(p) => (Shape::Triangle(p.degree()), p.points(), p.weights()),
+        BezierRef::Tensor(p) if p.net_is_exact() => {
             let (m, n) = p.degree();
             (Shape::Tensor(m, n), p.points(), p.weights())
         }
-        _ => return None,
+        _ => return Settled::Undecided,
     };
     let hom = points
         .iter()
         .enumerate()
         .map(|(idx, &p)| exact_hom(p, weights.map(|w| w[idx])))
-        .collect::<Option<Vec<_>>>()?;
-    system_of_net(shape, &hom, ray)
+        .collect::<Option<Vec<_>>>();
+    match hom.and_then(|hom| systems_of_net(shape, &hom, ray, range, check_hi)) {
+        Some(systems) => settle_all(&systems, bx),
+        None => Settled::Undecided,
+    }
+}
+
+/// Every system must place the root inside: a miss if one proves it
+/// outside, a hit if all prove it inside.
+pub(super) fn settle_all(systems: &[ExactSystem], bx: Box2) -> Settled {
+    let mut all_inside = true;
+    for sys in systems {
+        match sys.settle(bx) {
+            Settled::Outside => return Settled::Outside,
+            Settled::Undecided => all_inside = false,
+            Settled::Inside => {}
+        }
+    }
+    if all_inside {
+        Settled::Inside
+    } else {
+        Settled::Undecided
+    }
+}
+
+/// The exact systems whose settling decides a root for the range `[lo, hi]`:
+/// one with `t ≥ lo` as its sign condition (none when `lo = −∞`), one with
+/// `t ≤ hi` when `check_hi` and `hi` is finite, and one with the domain alone
+/// if neither applies. `None` if a value is not finite.
+pub(super) fn systems_of_net(
+    shape: Shape,
+    hom: &[[Q; 4]],
+    ray: &Ray,
+    [lo, hi]: [f64; 2],
+    check_hi: bool,
+) -> Option<Vec<ExactSystem>> {
+    let mut out = Vec::with_capacity(2);
+    if lo.is_finite() {
+        out.push(system_of_net(shape, hom, ray, Bound::Min(lo))?);
+    }
+    if check_hi && hi.is_finite() {
+        out.push(system_of_net(shape, hom, ray, Bound::Max(hi))?);
+    }
+    if out.is_empty() {
+        out.push(system_of_net(shape, hom, ray, Bound::None)?);
+    }
+    Some(out)
+}
+
+/// The sign condition on `t` an exact system carries.
+#[derive(Clone, Copy)]
+enum Bound {
+    /// None: the domain alone.
+    None,
+    /// `t ≥ lo`: `h − lo·|d|²·W ≥ 0`.
+    Min(f64),
+    /// `t ≤ hi`: `hi·|d|²·W − h ≥ 0`.
+    Max(f64),
 }
 
 /// The homogeneous control point `(w x, w y, w z, w)` exactly (`w = 1`
@@ -60,8 +113,8 @@ pub(super) fn exact_hom(p: DVec3, weight: Option<f64>) -> Option<[Q; 4]> {
 }
 
 /// The exact system of a homogeneous net `(w x, w y, w z, w)` (in `shape`'s
-/// storage order) and the ray (module docs).
-pub(super) fn system_of_net(shape: Shape, hom: &[[Q; 4]], ray: &Ray) -> Option<ExactSystem> {
+/// storage order) and the ray (module docs), with the sign condition `bound`.
+fn system_of_net(shape: Shape, hom: &[[Q; 4]], ray: &Ray, bound: Bound) -> Option<ExactSystem> {
     let q = |x: f64| Q::from_float(x);
     let vec = |p: DVec3| -> Option<[Q; 3]> { Some([q(p.x)?, q(p.y)?, q(p.z)?]) };
     let (o, d) = (vec(ray.origin())?, vec(ray.dir())?);
@@ -94,5 +147,22 @@ pub(super) fn system_of_net(shape: Shape, hom: &[[Q; 4]], ray: &Ray) -> Option<E
         })
         .collect();
     let [f, g, h]: [Vec<Q>; 3] = rows.try_into().ok()?;
-    ExactSystem::new(shape, f, g, Some(h)).ok()
+    // t = h / (W |d|²) with W > 0: t ≥ lo ⟺ h − lo |d|² W ≥ 0.
+    let d2 = d.iter().fold(Q::zero(), |acc, x| acc + x * x);
+    let shifted = |end: f64, sign: i32| -> Option<Vec<Q>> {
+        let k = q(end)? * &d2;
+        Some(
+            h.iter()
+                .zip(hom)
+                .map(|(h, w)| if sign > 0 { h - &k * &w[3] } else { &k * &w[3] - h })
+                .collect(),
+        )
+    };
+    let cond = match bound {
+        Bound::None => None,
+        Bound::Min(0.0) => Some(h.clone()),
+        Bound::Min(lo) => Some(shifted(lo, 1)?),
+        Bound::Max(hi) => Some(shifted(hi, -1)?),
+    };
+    ExactSystem::new(shape, f, g, cond).ok()
 }

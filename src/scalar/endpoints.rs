@@ -23,7 +23,8 @@
 //! every operation first checks that its operands lie in a safe range and hands
 //! anything else (empty, unbounded, huge or tiny endpoints) to inari itself.
 
-use super::{local_matrix, remember_local_matrix, MatrixKey, Scalar};
+use super::cache::{local_matrix, remember_local_matrix, MatrixCache, MatrixKey};
+use super::Scalar;
 use inari::Interval;
 use num_rational::BigRational;
 use std::any::{Any, TypeId};

@@ -10,20 +10,40 @@ use crate::poly::{Reduced, TriBall};
 use std::fmt;
 use std::str::FromStr;
 
-/// A clipping method.
+/// A clipping method on triangles (Liu et al. 2016, §2.3).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Method {
     /// Triangular Bézier clipping (Roth et al. 2000): convex hulls of both
     /// control nets.
+    #[cfg_attr(feature = "serde", serde(rename = "bezier"))]
+    #[cfg_attr(feature = "cli", value(name = "bezier", help = "triangular Bezier clipping"))]
     Bezier,
     /// Linear fat curves for both equations.
+    #[cfg_attr(feature = "serde", serde(rename = "linear"))]
+    #[cfg_attr(
+        feature = "cli",
+        value(name = "linear", help = "linear fat curves for both equations")
+    )]
     Linear,
     /// Hybrid clipping without preprocessing: a fat line for `f`, a fat conic
     /// for `g`.
+    #[cfg_attr(feature = "serde", serde(rename = "hc-nopre"))]
+    #[cfg_attr(
+        feature = "cli",
+        value(name = "hc-nopre", help = "hybrid clipping without preprocessing")
+    )]
     HcNoPre,
-    /// Hybrid clipping: a fat line for the preprocessed `f̂`, a fat conic for `g`.
-    /// (The driver may add a second clip with the roles swapped:
-    /// [`Limits::swap_roles`](super::driver::Limits::swap_roles).)
+    /// Hybrid clipping: a fat line for the preprocessed `f̂`, a fat conic for
+    /// `g` (a second clip with the roles swapped is added unless
+    /// `SolveOptions::swap_roles` is off).
+    #[cfg_attr(feature = "serde", serde(rename = "hc"))]
+    #[cfg_attr(
+        feature = "cli",
+        value(name = "hc", help = "hybrid clipping with preprocessing (default)")
+    )]
     Hc,
 }
 

@@ -17,15 +17,18 @@
 //! Methods: [`Method`] (Liu et al. 2016: Bézier, linear, hybrid with and
 //! without preprocessing).
 
-pub mod degenerate;
-pub mod driver;
-pub mod fatcurve;
-pub mod krawczyk;
-pub mod method;
-pub mod num;
-pub mod rect;
-pub mod settle;
-pub mod tribox;
+pub(crate) mod degenerate;
+pub(crate) mod driver;
+pub(crate) mod fatcurve;
+pub(crate) mod krawczyk;
+pub(crate) mod method;
+pub(crate) mod num;
+mod options;
+pub(crate) mod rect;
+pub(crate) mod settle;
+pub(crate) mod tribox;
+
+pub use options::{Domain, SolveOptions, SquareRoute};
 
 use crate::error::{Error, Result};
 use crate::poly::{Polynomial, TensorBezier, TriBall, TriBezier};
@@ -38,99 +41,9 @@ pub use method::Method;
 use num::GeoIv;
 use num_rational::BigRational;
 
-/// The domain of the unknowns.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Domain {
-    /// `{u, v ≥ 0, u + v ≤ 1}`.
-    Triangle,
-    /// `[0, 1]²`, solved as two triangles (the tensor → triangle conversion).
-    Square,
-}
-
-/// Options of a solve.
-#[derive(Clone, Copy, Debug)]
-pub struct SolveOptions {
-    /// Clipping method (default [`Method::Hc`]).
-    pub method: Method,
-    /// Tri-boxes are refined until their diameter is below `eps` (default
-    /// `1e-12`); certified boxes are then contracted by Krawczyk iteration.
-    pub eps: f64,
-    /// Budget: tri-boxes processed per triangle (default 200,000).
-    pub max_boxes: usize,
-    /// Budget: recursion depth (default 400).
-    pub max_depth: usize,
-    /// Probe tri-boxes with Krawczyk during the iteration: stalled ones (a
-    /// clip that did not halve) below diameter `1e-3`, converging ones below
-    /// `1e-2`, or below `½` where a float prediction of Krawczyk's
-    /// contraction (`κ < 0.3`, see `driver::KAPPA_PROBE`) says a proof is
-    /// likely; certify or exclude them early, and stop refining undecided
-    /// ones below `1e-9` (multiple roots). A probe only ever proves (every
-    /// verdict is Krawczyk's); it decides where the iteration stops, not what
-    /// is true. Default `true`;
-    /// `false` runs Algorithm 1 without probes (used by the tables; with
-    /// `swap_roles = false` too it is the paper's Algorithm 1 unchanged).
-    pub probe: bool,
-    /// When a step splits 1-to-4 (default [`SplitRule::Halving`]).
-    pub split: SplitRule,
-    /// Before a split, a second hybrid clip with the equations' roles swapped
-    /// ([`Limits::swap_roles`]; default `true`, used by the tables too;
-    /// `false` with `probe = false` is the paper's Algorithm 1 as printed).
-    pub swap_roles: bool,
-    /// How [`Domain::Square`] is solved by [`solve`] (default
-    /// [`SquareRoute::Triangles`], the paper's conversion).
-    pub square_route: SquareRoute,
-}
-
-/// How a system on the unit square is solved.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum SquareRoute {
-    /// As two triangles of degree `m + n` with the chosen [`Method`].
-    #[default]
-    Triangles,
-    /// Natively on boxes by Bézier clipping ([`rect::solve_rect`]; `method`,
-    /// `probe`, `split` and `max_depth` do not apply), falling back to
-    /// [`SquareRoute::Triangles`] when its budget runs out.
-    Rect,
-    /// As [`SquareRoute::Rect`] with fat-line clipping on boxes
-    /// ([`rect::RectClip::FatLine`]).
-    RectFatLine,
-    /// As [`SquareRoute::Rect`] with hybrid clipping on boxes
-    /// ([`rect::RectClip::Hybrid`]).
-    RectHybrid,
-}
-
-impl Default for SolveOptions {
-    fn default() -> Self {
-        Self {
-            method: Method::Hc,
-            eps: 1e-12,
-            max_boxes: 50_000,
-            max_depth: 400,
-            probe: true,
-            split: SplitRule::Halving,
-            swap_roles: true,
-            square_route: SquareRoute::Triangles,
-        }
-    }
-}
-
-impl SolveOptions {
-    fn limits(&self) -> Limits {
-        Limits {
-            method: self.method,
-            eps: self.eps,
-            max_boxes: self.max_boxes,
-            max_depth: self.max_depth,
-            max_exact: driver::MAX_EXACT_BOXES,
-            probe_below: if self.probe { 1e-3 } else { 0.0 },
-            split: self.split,
-            swap_roles: self.swap_roles,
-        }
-    }
-}
-
-/// A closed axis-aligned box in `(u, v)`.
+/// A closed axis-aligned box in `(u, v)`: `[u₀, u₁] × [v₀, v₁]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Box2 {
     /// `[lo, hi]` in `u`.
     pub u: [f64; 2],
@@ -139,9 +52,36 @@ pub struct Box2 {
 }
 
 impl Box2 {
-    /// The closed boxes share a point.
-    fn overlaps(&self, o: &Box2) -> bool {
+    /// The box `u × v` (bounds as given; a box with `lo > hi` is empty and
+    /// contains nothing).
+    pub fn new(u: [f64; 2], v: [f64; 2]) -> Self {
+        Self { u, v }
+    }
+
+    /// `true` if the point lies in the closed box.
+    ///
+    /// ```
+    /// use rootclip::solve::Box2;
+    /// let b = Box2::new([0.0, 0.5], [0.25, 1.0]);
+    /// assert!(b.contains(0.5, 0.25) && !b.contains(0.6, 0.5));
+    /// ```
+    pub fn contains(&self, u: f64, v: f64) -> bool {
+        self.u[0] <= u && u <= self.u[1] && self.v[0] <= v && v <= self.v[1]
+    }
+
+    /// `true` if the closed boxes share a point (touching counts).
+    pub fn overlaps(&self, o: &Box2) -> bool {
         self.u[0] <= o.u[1] && o.u[0] <= self.u[1] && self.v[0] <= o.v[1] && o.v[0] <= self.v[1]
+    }
+
+    /// The midpoint `(u, v)`.
+    pub fn center(&self) -> [f64; 2] {
+        [0.5 * (self.u[0] + self.u[1]), 0.5 * (self.v[0] + self.v[1])]
+    }
+
+    /// The larger side, `max(u₁ − u₀, v₁ − v₀)`.
+    pub fn width(&self) -> f64 {
+        (self.u[1] - self.u[0]).max(self.v[1] - self.v[0])
     }
 
     fn of(x: IBox) -> Self {
@@ -155,15 +95,13 @@ impl Box2 {
     fn ibox(&self) -> IBox {
         [interval(self.u[0], self.u[1]), interval(self.v[0], self.v[1])]
     }
-
-    /// `true` if the point lies in the closed box.
-    pub fn contains(&self, u: f64, v: f64) -> bool {
-        self.u[0] <= u && u <= self.u[1] && self.v[0] <= v && v <= self.v[1]
-    }
 }
 
-/// A certified root.
-#[derive(Clone, Debug)]
+/// A certified root: its box holds exactly one root of the system, a simple
+/// one (see the [`Solution`] contract).
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Root {
     /// Midpoint of the box.
     pub u: f64,
@@ -171,23 +109,30 @@ pub struct Root {
     pub v: f64,
     /// The closed box: it contains exactly one root of the system, and that
     /// root is simple.
+    #[cfg_attr(feature = "serde", serde(rename = "box"))]
     pub bx: Box2,
-    /// Always `true` for entries of [`Solution::roots`] (kept for the JSON schema).
-    pub certified: bool,
     /// The box touches the domain's boundary: the root is on it, or within
     /// the box's width of it (inside it, for exact input: see [`Solution`]).
     pub on_boundary: bool,
     /// Diameters of the tri-boxes holding this root, by level (index 0 is the
-    /// whole domain), along the deepest path that reached it.
+    /// whole domain), along the deepest path that reached it (not serialized).
+    #[cfg_attr(feature = "serde", serde(skip))]
     pub diameters: Vec<f64>,
 }
 
-/// Why a region could not be decided.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ClusterReason {
+/// Why a region is undecided: the one vocabulary of "not proven" for
+/// [`Cluster`]s and for ray hits ([`crate::ray::HitStatus`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "snake_case")
+)]
+pub enum UndecidedReason {
     /// Krawczyk neither proved a unique root nor excluded one: a multiple
     /// (double, tangential) root, or roots closer together than `eps`.
-    KrawczykUndecided,
+    MultipleOrClose,
     /// Both equations may vanish identically along an edge of the domain
     /// (every coefficient of both on that edge contains 0): possibly a curve
     /// of roots there, as when a ray passes through a patch's collapsed edge.
@@ -195,47 +140,75 @@ pub enum ClusterReason {
     /// solved as usual.
     VanishingEdge,
     /// The box holds exactly one simple root, within rounding of the
-    /// domain's boundary, and exact arithmetic could not tell whether it
-    /// lies in the domain or just outside it.
-    BoundaryUndecided,
+    /// domain's boundary (for a ray: of the patch's edge), and exact
+    /// arithmetic could not tell whether it lies in the domain or just
+    /// outside it.
+    Boundary,
+    /// Rays only: the box holds exactly one transversal hit on the patch, but
+    /// its `t` lies within rounding of an end of the requested `t` range (an
+    /// origin on the surface, say) and whether it is inside is not proven.
+    RangeEnd,
 }
 
-impl ClusterReason {
-    /// A short description for output.
+impl UndecidedReason {
+    /// The stable machine-readable code: `"multiple_or_close"`,
+    /// `"vanishing_edge"`, `"boundary"` or `"range_end"`.
+    pub fn code(self) -> &'static str {
+        match self {
+            UndecidedReason::MultipleOrClose => "multiple_or_close",
+            UndecidedReason::VanishingEdge => "vanishing_edge",
+            UndecidedReason::Boundary => "boundary",
+            UndecidedReason::RangeEnd => "range_end",
+        }
+    }
+
+    /// A one-line English description for output.
     pub fn describe(self) -> &'static str {
         match self {
-            ClusterReason::KrawczykUndecided => {
+            UndecidedReason::MultipleOrClose => {
                 "Krawczyk undecided: multiple root (tangential curves) or roots closer than eps"
             }
-            ClusterReason::BoundaryUndecided => {
+            UndecidedReason::Boundary => {
                 "one simple root within rounding of the domain's boundary: inside or just outside is undecided"
             }
-            ClusterReason::VanishingEdge => {
+            UndecidedReason::VanishingEdge => {
                 "both equations may vanish along this domain edge (a curve of roots, e.g. a collapsed patch edge)"
+            }
+            UndecidedReason::RangeEnd => {
+                "one transversal hit whose t lies within rounding of an end of the t range: in or out is undecided"
             }
         }
     }
 }
 
 /// An undecided region: it may hold any number of roots (including none).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Cluster {
     /// A closed box covering the region.
+    #[cfg_attr(feature = "serde", serde(rename = "box"))]
     pub bx: Box2,
     /// Why it is undecided.
-    pub reason: ClusterReason,
-    /// Diameters by level along the path to one of its tri-boxes.
+    pub reason: UndecidedReason,
+    /// Diameters by level along the path to one of its tri-boxes (not
+    /// serialized).
+    #[cfg_attr(feature = "serde", serde(skip))]
     pub diameters: Vec<f64>,
 }
 
-/// A region a budget left unexplored.
-#[derive(Clone, Debug)]
+/// A region a budget left unexplored: roots there are neither listed nor
+/// excluded.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Leftover {
-    /// The triangle, as a box in `(u, v)`.
+    /// The region's bounding box in `(u, v)`.
+    #[cfg_attr(feature = "serde", serde(rename = "box"))]
     pub bx: Box2,
     /// The triangle's vertices in `(u, v)` (enclosed: exact for the triangle
-    /// domain); `None` for a box of the rectangle solver ([`rect`]), whose
-    /// region is `bx` itself.
+    /// domain) when the region is a tri-box; `None` for a box of the
+    /// rectangle solver, whose region is `bx` itself.
     pub triangle: Option<[[f64; 2]; 3]>,
 }
 
@@ -270,7 +243,7 @@ pub struct Stats {
 /// * For exact input ([`solve`]) that root also lies in the closed domain:
 ///   a root whose box touches the boundary is settled in exact arithmetic
 ///   ([`settle`]) — kept if in the domain, dropped if outside, else reported
-///   as a [`ClusterReason::BoundaryUndecided`] cluster. (For interval input,
+///   as a [`UndecidedReason::Boundary`] cluster. (For interval input,
 ///   [`solve_triangle`], [`solve_square`], an `on_boundary` root may lie
 ///   within its box's width outside the domain.)
 /// * Clusters promise nothing about their content.
@@ -359,100 +332,280 @@ fn scaler(coeffs: &[BigRational]) -> impl Fn(&BigRational) -> BigRational {
     }
 }
 
-/// Solves exact polynomials (e.g. from [`parse_polynomial`](crate::parse_polynomial))
-/// over `domain`. Errors: an identically zero equation or a common factor
-/// ([`Error::Degenerate`]; a curve of roots cannot be listed), bad options.
+/// Every root of `f(u, v) = g(u, v) = 0` over `domain`, for exact
+/// polynomials (e.g. from [`parse_polynomial`](crate::parse_polynomial)),
+/// with the [`Solution`] contract.
+///
+/// The polynomials are converted to BB form exactly (degree `n` = the larger
+/// total degree on the triangle, the larger degrees in `u` and `v` on the
+/// square), checked for a common factor exactly, then solved with proofs in
+/// floating-point and interval arithmetic; roots on the domain's boundary
+/// are settled in exact arithmetic.
+///
+/// Errors: an identically zero equation or a common factor (a curve of
+/// roots cannot be listed: [`Error::Degenerate`]), a conversion too large
+/// ([`Error::TooLarge`]), invalid options ([`Error::InvalidOption`]).
 ///
 /// ```
 /// use rootclip::{parse_polynomial, solve::{solve, Domain, SolveOptions}};
-/// let f = parse_polynomial("u^3 - v").unwrap();
-/// let g = parse_polynomial("u^3 + v - 1/4").unwrap();
-/// let sol = solve(&f, &g, Domain::Triangle, &SolveOptions::default()).unwrap();
+/// let f = parse_polynomial("u^3 - v")?;
+/// let g = parse_polynomial("u^3 + v - 1/4")?;
+/// let sol = solve(&f, &g, Domain::Triangle, &SolveOptions::default())?;
 /// assert!(sol.complete && sol.roots.len() == 1);
 /// assert!(sol.roots[0].bx.contains(0.5, 0.125));
+/// # Ok::<(), rootclip::Error>(())
 /// ```
 pub fn solve(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions) -> Result<Solution> {
-    if f.is_zero() || g.is_zero() {
-        let which = if f.is_zero() { "f" } else { "g" };
+    opts.validate()?;
+    not_zero(f.is_zero(), g.is_zero())?;
+    for p in [f, g] {
+        p.check_conversion_cost(domain == Domain::Square)?;
+    }
+    no_common_factor(f, g)?;
+    match domain {
+        Domain::Triangle => {
+            let n = f.total_degree().max(1).max(g.total_degree()) as usize;
+            solve_exact_triangle(f.to_triangle(n), g.to_triangle(n), opts)
+        }
+        Domain::Square => {
+            let ((m, n), (p, q)) = (f.degrees(), g.degrees());
+            let (dm, dn) = (m.max(p) as usize, n.max(q) as usize);
+            solve_exact_square(f.to_square().elevate(dm, dn)?, g.to_square().elevate(dm, dn)?, opts)
+        }
+    }
+}
+
+/// A Bernstein–Bézier polynomial [`solve_bb`] takes: [`TriBezier`] (the
+/// unit triangle) or [`TensorBezier`] on the unit square, with `f64`,
+/// [`BigRational`] or [`Interval`] coefficients. Sealed.
+pub trait BbPolynomial: sealed::Sealed {}
+
+mod sealed {
+    use crate::poly::{TensorBezier, TriBezier};
+    use inari::Interval;
+    use num_rational::BigRational;
+
+    pub trait Sealed {
+        fn input(&self) -> crate::Result<BbInput<'_>>;
+    }
+
+    /// What [`solve_bb`] solves: an exact system (floats are exact rationals),
+    /// or an enclosure.
+    // Built once per solve and consumed at once: boxing buys nothing.
+    #[allow(clippy::large_enum_variant)]
+    pub enum BbInput<'a> {
+        Triangle(TriBezier<BigRational>),
+        Square(TensorBezier<BigRational>),
+        TriangleEnclosure(&'a TriBezier<Interval>),
+        SquareEnclosure(&'a TensorBezier<Interval>),
+    }
+}
+
+use sealed::BbInput;
+
+fn exactly(x: f64) -> Result<BigRational> {
+    BigRational::from_float(x).ok_or_else(|| Error::NonFinite(format!("a coefficient is {x}")))
+}
+
+fn unit_square<S: Scalar>(p: &TensorBezier<S>) -> Result<()> {
+    let (u, v) = p.domain();
+    let is = |x: &S, y: f64| x.lower() == y && x.upper() == y;
+    if [u, v].iter().all(|d| is(&d[0], 0.0) && is(&d[1], 1.0)) {
+        Ok(())
+    } else {
+        Err(Error::Shape(
+            "solve_bb needs tensor polynomials on the unit square [0, 1]²".into(),
+        ))
+    }
+}
+
+impl BbPolynomial for TriBezier<f64> {}
+impl sealed::Sealed for TriBezier<f64> {
+    fn input(&self) -> Result<BbInput<'_>> {
+        let c = self.coeffs().iter().map(|&x| exactly(x)).collect::<Result<Vec<_>>>()?;
+        Ok(BbInput::Triangle(TriBezier::new(self.degree(), c)?))
+    }
+}
+impl BbPolynomial for TriBezier<BigRational> {}
+impl sealed::Sealed for TriBezier<BigRational> {
+    fn input(&self) -> Result<BbInput<'_>> {
+        Ok(BbInput::Triangle(self.clone()))
+    }
+}
+impl BbPolynomial for TriBezier<Interval> {}
+impl sealed::Sealed for TriBezier<Interval> {
+    fn input(&self) -> Result<BbInput<'_>> {
+        Ok(BbInput::TriangleEnclosure(self))
+    }
+}
+impl BbPolynomial for TensorBezier<f64> {}
+impl sealed::Sealed for TensorBezier<f64> {
+    fn input(&self) -> Result<BbInput<'_>> {
+        unit_square(self)?;
+        let (m, n) = self.degree();
+        let c = self.coeffs().iter().map(|&x| exactly(x)).collect::<Result<Vec<_>>>()?;
+        Ok(BbInput::Square(TensorBezier::on_unit_square(m, n, c)?))
+    }
+}
+impl BbPolynomial for TensorBezier<BigRational> {}
+impl sealed::Sealed for TensorBezier<BigRational> {
+    fn input(&self) -> Result<BbInput<'_>> {
+        unit_square(self)?;
+        Ok(BbInput::Square(self.clone()))
+    }
+}
+impl BbPolynomial for TensorBezier<Interval> {}
+impl sealed::Sealed for TensorBezier<Interval> {
+    fn input(&self) -> Result<BbInput<'_>> {
+        unit_square(self)?;
+        Ok(BbInput::SquareEnclosure(self))
+    }
+}
+
+/// Every root of `f = g = 0` for polynomials given by their BB coefficients:
+/// on the unit triangle for [`TriBezier`] (Liu et al. 2016, Eq. (1)), on the
+/// unit square for [`TensorBezier`]; degrees may differ (the lower one is
+/// elevated). The [`Solution`] contract holds for:
+/// * `f64` and [`BigRational`] coefficients: the system with exactly these
+///   coefficients (a float is an exact rational), as for [`solve`]: common
+///   factors are detected ([`Error::Degenerate`]) and roots on the boundary
+///   settled exactly;
+/// * [`Interval`] coefficients: every system whose coefficients lie in the
+///   enclosures; a common factor then ends in undecided regions or a budget,
+///   never in a wrong "no roots", and an `on_boundary` root may lie within
+///   its box's width outside the domain.
+///
+/// Errors: NaN or infinite coefficients ([`Error::NonFinite`]), an
+/// identically zero equation or a common factor ([`Error::Degenerate`]), a
+/// tensor polynomial not on the unit square ([`Error::Shape`]), invalid
+/// options ([`Error::InvalidOption`]).
+///
+/// ```
+/// use rootclip::{solve::{solve_bb, SolveOptions}, TriBezier};
+/// // Degree 1 on the unit triangle, coefficients at the vertices w, u, v
+/// // (storage order of `poly::tri_indices`): f = u − 1/4, g = v − 1/2.
+/// let f = TriBezier::new(1, vec![-0.25, 0.75, -0.25])?;
+/// let g = TriBezier::new(1, vec![-0.5, -0.5, 0.5])?;
+/// let sol = solve_bb(&f, &g, &SolveOptions::default())?;
+/// assert_eq!(sol.roots.len(), 1);
+/// assert!(sol.roots[0].bx.contains(0.25, 0.5));
+/// # Ok::<(), rootclip::Error>(())
+/// ```
+pub fn solve_bb<P: BbPolynomial>(f: &P, g: &P, opts: &SolveOptions) -> Result<Solution> {
+    opts.validate()?;
+    match (f.input()?, g.input()?) {
+        (BbInput::Triangle(f), BbInput::Triangle(g)) => {
+            not_zero(f.is_zero(), g.is_zero())?;
+            no_common_factor(&Polynomial::from_triangle(&f), &Polynomial::from_triangle(&g))?;
+            let n = f.degree().max(g.degree()).max(1);
+            solve_exact_triangle(f.elevate(n)?, g.elevate(n)?, opts)
+        }
+        (BbInput::Square(f), BbInput::Square(g)) => {
+            not_zero(
+                f.coeffs().iter().all(num_traits::Zero::is_zero),
+                g.coeffs().iter().all(num_traits::Zero::is_zero),
+            )?;
+            no_common_factor(&Polynomial::from_square(&f), &Polynomial::from_square(&g))?;
+            let ((m, n), (p, q)) = (f.degree(), g.degree());
+            let (dm, dn) = (m.max(p), n.max(q));
+            solve_exact_square(f.elevate(dm, dn)?, g.elevate(dm, dn)?, opts)
+        }
+        (BbInput::TriangleEnclosure(f), BbInput::TriangleEnclosure(g)) => solve_triangle(f, g, opts),
+        (BbInput::SquareEnclosure(f), BbInput::SquareEnclosure(g)) => solve_square(f, g, opts),
+        _ => unreachable!("f and g have the same type"),
+    }
+}
+
+fn not_zero(f_zero: bool, g_zero: bool) -> Result<()> {
+    if f_zero || g_zero {
+        let which = if f_zero { "f" } else { "g" };
         return Err(Error::Degenerate(format!(
             "equation {which} is identically zero: every point of the other curve is a root"
         )));
     }
-    for p in [f, g] {
-        p.check_conversion_cost(domain == Domain::Square)?;
-    }
+    Ok(())
+}
+
+fn no_common_factor(f: &Polynomial, g: &Polynomial) -> Result<()> {
     if degenerate::has_common_factor(f, g) {
         return Err(Error::Degenerate(
             "f and g share a common factor: the system has a curve of roots".into(),
         ));
     }
-    let enclose = |q: &num_rational::BigRational| Interval::from_rational(q);
-    match domain {
-        Domain::Triangle => {
-            check_options(opts)?;
-            let n = f.total_degree().max(1).max(g.total_degree()) as usize;
-            let (ef, eg) = (f.to_triangle(n), g.to_triangle(n));
-            let (ef, eg) = (ef.map(scaler(ef.coeffs())), eg.map(scaler(eg.coeffs())));
-            let (tf, tg) = (ef.map(enclose), eg.map(enclose));
-            check_system(&tf, &tg)?;
-            let global = System::new(tf.clone(), tg.clone());
-            let sys = settle::ExactSystem::new(
-                settle::Shape::Triangle(n),
-                ef.coeffs().to_vec(),
-                eg.coeffs().to_vec(),
-                None,
-            )?;
-            let piece = Piece {
-                f: tf,
-                g: tg,
-                frame: Frame::Identity,
-                exact: Some([ef, eg]),
-                floats: false,
-            };
-            Ok(finish_exact(
-                solve_pieces(vec![piece], &global, Domain::Triangle, opts),
-                &sys,
-            ))
+    Ok(())
+}
+
+/// The exact system on the unit triangle (equal degrees, coprime, not zero).
+fn solve_exact_triangle(
+    ef: TriBezier<BigRational>,
+    eg: TriBezier<BigRational>,
+    opts: &SolveOptions,
+) -> Result<Solution> {
+    let enclose = |q: &BigRational| Interval::from_rational(q);
+    let n = ef.degree();
+    let (ef, eg) = (ef.map(scaler(ef.coeffs())), eg.map(scaler(eg.coeffs())));
+    let (tf, tg) = (ef.map(enclose), eg.map(enclose));
+    check_system(&tf, &tg)?;
+    let global = System::new(tf.clone(), tg.clone());
+    let sys = settle::ExactSystem::new(
+        settle::Shape::Triangle(n),
+        ef.coeffs().to_vec(),
+        eg.coeffs().to_vec(),
+        None,
+    )?;
+    let piece = Piece {
+        f: tf,
+        g: tg,
+        frame: Frame::Identity,
+        exact: Some([ef, eg]),
+        floats: false,
+    };
+    Ok(finish_exact(
+        solve_pieces(vec![piece], &global, Domain::Triangle, opts),
+        &sys,
+    ))
+}
+
+/// The exact system on the unit square (equal bidegrees, coprime, not zero).
+fn solve_exact_square(
+    ef: TensorBezier<BigRational>,
+    eg: TensorBezier<BigRational>,
+    opts: &SolveOptions,
+) -> Result<Solution> {
+    let enclose = |q: &BigRational| Interval::from_rational(q);
+    let (dm, dn) = ef.degree();
+    let (ef, eg) = (ef.map_coeffs(scaler(ef.coeffs())), eg.map_coeffs(scaler(eg.coeffs())));
+    let sys = settle::ExactSystem::new(
+        settle::Shape::Tensor(dm, dn),
+        ef.coeffs().to_vec(),
+        eg.coeffs().to_vec(),
+        None,
+    )?;
+    if opts.square_route != SquareRoute::Triangles {
+        let ropts = rect::RectOptions {
+            eps: opts.eps,
+            max_boxes: opts.max_boxes,
+            clip: match opts.square_route {
+                SquareRoute::RectFatLine => rect::RectClip::FatLine,
+                SquareRoute::RectHybrid => rect::RectClip::Hybrid,
+                _ => rect::RectClip::Bezier,
+            },
+            ..rect::RectOptions::default()
+        };
+        let sol = rect::solve_rect(&ef.map(enclose), &eg.map(enclose), None, &ropts)?.solution;
+        if sol.complete {
+            return Ok(finish_exact(sol, &sys));
         }
-        Domain::Square => {
-            check_options(opts)?;
-            let ((m, n), (p, q)) = (f.degrees(), g.degrees());
-            let (dm, dn) = (m.max(p) as usize, n.max(q) as usize);
-            let (ef, eg) = (f.to_square().elevate(dm, dn)?, g.to_square().elevate(dm, dn)?);
-            let (ef, eg) = (ef.map_coeffs(scaler(ef.coeffs())), eg.map_coeffs(scaler(eg.coeffs())));
-            let sys = settle::ExactSystem::new(
-                settle::Shape::Tensor(dm, dn),
-                ef.coeffs().to_vec(),
-                eg.coeffs().to_vec(),
-                None,
-            )?;
-            if opts.square_route != SquareRoute::Triangles {
-                let ropts = rect::RectOptions {
-                    eps: opts.eps,
-                    max_boxes: opts.max_boxes,
-                    clip: match opts.square_route {
-                        SquareRoute::RectFatLine => rect::RectClip::FatLine,
-                        SquareRoute::RectHybrid => rect::RectClip::Hybrid,
-                        _ => rect::RectClip::Bezier,
-                    },
-                    ..rect::RectOptions::default()
-                };
-                let sol = rect::solve_rect(&ef.map(enclose), &eg.map(enclose), None, &ropts)?.solution;
-                if sol.complete {
-                    return Ok(finish_exact(sol, &sys));
-                }
-                // Out of budget (e.g. two curves running nearly parallel
-                // along a diagonal, which axis-aligned boxes separate only
-                // when they are as thin as the gap): the triangle route's fat
-                // curves and exact restarts handle those.
-            }
-            let exact = Some((ef.to_triangles()?, eg.to_triangles()?));
-            Ok(finish_exact(
-                square_pieces(&ef.map(enclose), &eg.map(enclose), exact, opts)?,
-                &sys,
-            ))
-        }
+        // Out of budget (e.g. two curves running nearly parallel
+        // along a diagonal, which axis-aligned boxes separate only
+        // when they are as thin as the gap): the triangle route's fat
+        // curves and exact restarts handle those.
     }
+    let exact = Some((ef.to_triangles()?, eg.to_triangles()?));
+    Ok(finish_exact(
+        square_pieces(&ef.map(enclose), &eg.map(enclose), exact, opts)?,
+        &sys,
+    ))
 }
 
 /// Undecided regions at most this wide are retried by exact Krawczyk.
@@ -485,7 +638,7 @@ fn finish_exact(mut sol: Solution, sys: &settle::ExactSystem) -> Solution {
             // (NaN counts as singular.)
             det.abs().partial_cmp(&(1e-11 * scale)) != Some(std::cmp::Ordering::Greater)
         };
-        if c.reason != ClusterReason::KrawczykUndecided || !small || near_singular() {
+        if c.reason != UndecidedReason::MultipleOrClose || !small || near_singular() {
             kept.push(c);
             continue;
         }
@@ -509,7 +662,6 @@ fn finish_exact(mut sol: Solution, sys: &settle::ExactSystem) -> Solution {
                 u: 0.5 * (bx.u[0] + bx.u[1]),
                 v: 0.5 * (bx.v[0] + bx.v[1]),
                 bx,
-                certified: true,
                 on_boundary: place == Place::Boundary,
                 diameters: c.diameters.clone(),
             });
@@ -566,7 +718,7 @@ fn certify_region(
 /// Settles every certified root whose box touches the domain's boundary in
 /// exact arithmetic ([`settle`]): kept if it is in the closed domain,
 /// dropped if it is outside, and turned into a
-/// [`ClusterReason::BoundaryUndecided`] region if neither is proven.
+/// [`UndecidedReason::Boundary`] region if neither is proven.
 fn settle_boundary(mut sol: Solution, sys: &settle::ExactSystem) -> Solution {
     let mut kept = Vec::with_capacity(sol.roots.len());
     for r in std::mem::take(&mut sol.roots) {
@@ -579,23 +731,13 @@ fn settle_boundary(mut sol: Solution, sys: &settle::ExactSystem) -> Solution {
             settle::Settled::Outside => sol.stats.outside_domain += 1,
             settle::Settled::Undecided => sol.clusters.push(Cluster {
                 bx: r.bx,
-                reason: ClusterReason::BoundaryUndecided,
+                reason: UndecidedReason::Boundary,
                 diameters: r.diameters,
             }),
         }
     }
     sol.roots = kept;
     sol
-}
-
-fn check_options(opts: &SolveOptions) -> Result<()> {
-    if !(opts.eps.is_finite() && opts.eps > 0.0) {
-        return Err(Error::Shape(format!(
-            "eps must be a positive finite number, got {}",
-            opts.eps
-        )));
-    }
-    Ok(())
 }
 
 fn check_system(f: &TriBezier<Interval>, g: &TriBezier<Interval>) -> Result<()> {
@@ -615,8 +757,12 @@ fn check_system(f: &TriBezier<Interval>, g: &TriBezier<Interval>) -> Result<()> 
 /// See [`Solution`] for the contract. Common factors are not detected here
 /// (use [`solve`] for exact input); a curve of roots then ends in clusters or
 /// a budget, never in a wrong "no roots".
-pub fn solve_triangle(f: &TriBezier<Interval>, g: &TriBezier<Interval>, opts: &SolveOptions) -> Result<Solution> {
-    check_options(opts)?;
+pub(crate) fn solve_triangle(
+    f: &TriBezier<Interval>,
+    g: &TriBezier<Interval>,
+    opts: &SolveOptions,
+) -> Result<Solution> {
+    opts.validate()?;
     check_system(f, g)?;
     let n = f.degree().max(g.degree());
     let (f, g) = (f.elevate_cached(n), g.elevate_cached(n));
@@ -649,8 +795,12 @@ struct Piece {
 /// Solves `f = g = 0` on the unit square, `f`, `g` in tensor BB form there,
 /// through the exact conversion to two triangles. A root on the diagonal is
 /// reported once. See [`Solution`] for the contract.
-pub fn solve_square(f: &TensorBezier<Interval>, g: &TensorBezier<Interval>, opts: &SolveOptions) -> Result<Solution> {
-    check_options(opts)?;
+pub(crate) fn solve_square(
+    f: &TensorBezier<Interval>,
+    g: &TensorBezier<Interval>,
+    opts: &SolveOptions,
+) -> Result<Solution> {
+    opts.validate()?;
     let (m, n) = f.degree();
     let (p, q) = g.degree();
     let (f, g) = (f.elevate(m.max(p), n.max(q))?, g.elevate(m.max(p), n.max(q))?);
@@ -770,7 +920,7 @@ fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &Solv
         clusters.extend(c.into_iter().chain(undecided).map(to_global));
         strips.extend(run.strips.iter().map(|&[u, v]| Cluster {
             bx: Box2::of(frame.map_box([interval(u[0], u[1]), interval(v[0], v[1])])),
-            reason: ClusterReason::VanishingEdge,
+            reason: UndecidedReason::VanishingEdge,
             diameters: Vec::new(),
         }));
         for leaf in &run.leftovers {
@@ -794,7 +944,6 @@ fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &Solv
                 u: r.bx[0].mid(),
                 v: r.bx[1].mid(),
                 bx: Box2::of(r.bx),
-                certified: true,
                 on_boundary: place == Place::Boundary,
                 diameters: r.diameters,
             }),
@@ -928,7 +1077,7 @@ fn undecided_clusters(leaves: Vec<Found>) -> Vec<Cluster> {
 fn undecided(region: Found) -> Cluster {
     Cluster {
         bx: Box2::of(region.bx),
-        reason: ClusterReason::KrawczykUndecided,
+        reason: UndecidedReason::MultipleOrClose,
         diameters: region.diameters,
     }
 }
@@ -951,7 +1100,7 @@ fn touching_regions(leaves: Vec<Found>) -> Vec<Cluster> {
 fn join_undecided(mut sol: Solution) -> Solution {
     let (near, other): (Vec<Cluster>, Vec<Cluster>) = std::mem::take(&mut sol.clusters)
         .into_iter()
-        .partition(|c| c.reason == ClusterReason::KrawczykUndecided);
+        .partition(|c| c.reason == UndecidedReason::MultipleOrClose);
     let regions: Vec<Found> = near
         .into_iter()
         .map(|c| Found {
@@ -1205,7 +1354,7 @@ fn locate(x: IBox, domain: Domain) -> Place {
 /// The same clipping iteration in plain `f64`, without any proof: returns the
 /// centres of the final tri-boxes (on the unit triangle). For measuring the
 /// cost of rigor and as a fast heuristic; never a certificate.
-pub fn solve_triangle_f64(f: &TriBezier<f64>, g: &TriBezier<f64>, opts: &SolveOptions) -> Vec<[f64; 2]> {
+pub(crate) fn solve_triangle_f64(f: &TriBezier<f64>, g: &TriBezier<f64>, opts: &SolveOptions) -> Vec<[f64; 2]> {
     let limits = Limits {
         probe_below: 0.0,
         ..opts.limits()

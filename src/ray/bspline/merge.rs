@@ -47,16 +47,12 @@
 
 use super::{BezierPiece, BsplineSurface};
 use crate::poly::{Direction, TensorBezier};
-use crate::ray::{Hit, HitBox, Planes, Ray};
+use crate::ray::bezier::Planes;
+use crate::ray::{Hit, HitBox, HitStatus, Ray};
 use crate::scalar::{interval, point};
+use crate::solve::UndecidedReason;
 use inari::Interval;
 use std::collections::BTreeMap;
-
-/// A piece proved exactly one root of its polynomial in the hit's box (on
-/// the piece, or within rounding of its edge).
-fn proven_root(h: &Hit) -> bool {
-    h.certified || h.on_edge
-}
 
 fn overlaps(a: [f64; 2], b: [f64; 2]) -> bool {
     a[0] <= b[1] && b[0] <= a[1]
@@ -65,7 +61,12 @@ fn overlaps(a: [f64; 2], b: [f64; 2]) -> bool {
 /// Groups certified hits of different pieces whose `(u, v)` boxes overlap
 /// (transitively) and replaces a group by one hit where
 /// [`certify_piecewise`] proves a single zero; everything else is kept.
-pub(super) fn merge_knot_line_duplicates(surface: &BsplineSurface, ray: &Ray, found: Vec<(Hit, usize)>) -> Vec<Hit> {
+pub(super) fn merge_knot_line_duplicates(
+    surface: &BsplineSurface,
+    ray: &Ray,
+    found: Vec<(Hit, usize)>,
+    range: [f64; 2],
+) -> Vec<Hit> {
     let n = found.len();
     let mut parent: Vec<usize> = (0..n).collect();
     fn root(parent: &mut [usize], mut i: usize) -> usize {
@@ -78,7 +79,12 @@ pub(super) fn merge_knot_line_duplicates(surface: &BsplineSurface, ray: &Ray, fo
     for i in 0..n {
         for j in i + 1..n {
             let ((a, pa), (b, pb)) = (&found[i], &found[j]);
-            if proven_root(a) && proven_root(b) && pa != pb && overlaps(a.bx.u, b.bx.u) && overlaps(a.bx.v, b.bx.v) {
+            if a.is_proven_root()
+                && b.is_proven_root()
+                && pa != pb
+                && overlaps(a.bx.u, b.bx.u)
+                && overlaps(a.bx.v, b.bx.v)
+            {
                 let (ri, rj) = (root(&mut parent, i), root(&mut parent, j));
                 parent[ri] = rj;
             }
@@ -94,7 +100,7 @@ pub(super) fn merge_knot_line_duplicates(surface: &BsplineSurface, ray: &Ray, fo
     for group in groups.into_values() {
         // A single report needs the piecewise proof only when its piece
         // could not place its root on the piece (the box crosses a knot line).
-        if group.len() == 1 && !group[0].on_edge {
+        if group.len() == 1 && !group[0].on_edge() {
             out.extend(group);
             continue;
         }
@@ -107,7 +113,7 @@ pub(super) fn merge_knot_line_duplicates(surface: &BsplineSurface, ray: &Ray, fo
         let x0 = [hull(|h| h.bx.u), hull(|h| h.bx.v)];
         let planes = planes.get_or_insert_with(|| Planes::of(ray));
         match certify_piecewise(surface, planes, x0) {
-            Some(k) => out.extend(merged_hit(surface, planes, k)),
+            Some(k) => out.extend(merged_hit(surface, planes, k, range)),
             None => out.extend(group),
         }
     }
@@ -115,22 +121,22 @@ pub(super) fn merge_knot_line_duplicates(surface: &BsplineSurface, ray: &Ray, fo
 }
 
 /// The merged hit of a proven box `k`: `t` enclosed over `k` on every piece
-/// meeting it; `None` if `t` is provably negative.
-fn merged_hit(surface: &BsplineSurface, planes: &Planes, k: IBox) -> Option<Hit> {
+/// meeting it; `None` if `t` is provably outside `range`.
+fn merged_hit(surface: &BsplineSurface, planes: &Planes, k: IBox, [lo, hi]: [f64; 2]) -> Option<Hit> {
     let t = meeting(surface, k)
         .map(|piece| {
             let h: [Interval; 4] = std::array::from_fn(|c| piece.hom[c].eval(k[0], k[1]));
             planes.t_of([h[0] / h[3], h[1] / h[3], h[2] / h[3]])
         })
         .fold(Interval::EMPTY, |a, b| a.convex_hull(b));
-    if t.sup() < 0.0 {
+    if t.sup() < lo || t.inf() > hi {
         return None;
     }
     let (u, v) = (k[0].mid(), k[1].mid());
     let (su, sv) = surface.partials(u, v);
     // The zero of the piecewise system is a hit if it lies on the surface's
     // closed parameter domain (the outer pieces' extensions are not) and
-    // t ≥ 0 is proven.
+    // its t is proven to lie in the range.
     let (bu, bv) = (&surface.breaks_u, &surface.breaks_v);
     let inside =
         k[0].inf() >= bu[0] && k[0].sup() <= bu[bu.len() - 1] && k[1].inf() >= bv[0] && k[1].sup() <= bv[bv.len() - 1];
@@ -140,9 +146,13 @@ fn merged_hit(surface: &BsplineSurface, planes: &Planes, k: IBox) -> Option<Hit>
         v,
         point: surface.eval(u, v),
         normal: su.cross(sv).normalize_or_zero(),
-        certified: inside && t.inf() >= 0.0 && t.sup().is_finite(),
-        on_edge: !inside,
-        t_straddles_zero: t.inf() <= 0.0,
+        status: if !inside {
+            HitStatus::Undecided(UndecidedReason::Boundary)
+        } else if !(t.inf() >= lo && t.sup() <= hi && t.inf().is_finite() && t.sup().is_finite()) {
+            HitStatus::Undecided(UndecidedReason::RangeEnd)
+        } else {
+            HitStatus::Certified
+        },
         bx: HitBox {
             u: [k[0].inf(), k[0].sup()],
             v: [k[1].inf(), k[1].sup()],

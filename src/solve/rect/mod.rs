@@ -67,7 +67,7 @@ use super::driver::VANISHING;
 use super::krawczyk::{IBox, System, Verdict};
 use super::method::smallest_singular_left;
 use super::{
-    merge_roots, overlaps, undecided_clusters, Box2, Cluster, ClusterReason, Found, Leftover, Root, Solution, Stats,
+    merge_roots, overlaps, undecided_clusters, Box2, Cluster, Found, Leftover, Root, Solution, Stats, UndecidedReason,
 };
 use crate::error::{Error, Result};
 use crate::poly::TensorBezier;
@@ -77,8 +77,15 @@ use fatline::{fat_line_spans, FatLineClip};
 use hybrid::hybrid_spans;
 use inari::Interval;
 
-/// What the caller wants from the roots, ordered by an objective `k`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+/// What the caller wants from the roots, ordered by an objective `k` (for
+/// rays: `t`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+#[non_exhaustive]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "snake_case")
+)]
 pub enum Query {
     /// Every root.
     #[default]
@@ -210,8 +217,8 @@ const MAX_MAGNITUDE: f64 = 1e300;
 ///
 /// ```
 /// use rootclip::poly::TensorBezier;
-/// use rootclip::solve::rect::{solve_rect, RectOptions};
-/// use rootclip::scalar::point;
+/// use rootclip::internals::rect::{solve_rect, RectOptions};
+/// use rootclip::internals::point;
 /// // f = s − ¼, g = t − ¾ on the unit square (bidegree (1, 1)).
 /// let f = TensorBezier::on_unit_square(1, 1, [-0.25, -0.25, 0.75, 0.75].map(point).to_vec()).unwrap();
 /// let g = TensorBezier::on_unit_square(1, 1, [-0.75, 0.25, -0.75, 0.25].map(point).to_vec()).unwrap();
@@ -690,7 +697,7 @@ impl Runner {
     /// domain along which both equations may vanish identically or nearly
     /// (all their coefficients on that edge contain 0 or are below
     /// [`VANISHING`] of their largest) and keeps it as an undecided
-    /// region ([`ClusterReason::VanishingEdge`]).
+    /// region ([`UndecidedReason::VanishingEdge`]).
     ///
     /// Why: if `f(0, t) ≡ g(0, t) ≡ 0` the edge is a curve of roots, and
     /// without the cut the iteration covers it with ever smaller boxes until
@@ -793,7 +800,6 @@ impl Runner {
                 u: x[0].mid(),
                 v: x[1].mid(),
                 bx: Box2::of(x),
-                certified: true,
                 on_boundary: !inside,
                 diameters: r.diameters,
             });
@@ -803,7 +809,7 @@ impl Runner {
             .into_iter()
             .chain(self.edge_strips.iter().map(|&s| Cluster {
                 bx: Box2::of(s),
-                reason: ClusterReason::VanishingEdge,
+                reason: UndecidedReason::VanishingEdge,
                 diameters: Vec::new(),
             }))
             .collect();

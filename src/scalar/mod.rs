@@ -29,16 +29,13 @@ use inari::Interval;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive, Zero};
-use std::any::{Any, TypeId};
-use std::cell::RefCell;
-use std::collections::HashMap;
 use std::fmt::Debug;
-use std::hash::{BuildHasherDefault, Hasher};
 use std::ops::{Add, Div, Mul, Neg, Sub};
-use std::sync::{Arc, Mutex, OnceLock};
 
+mod cache;
 mod endpoints;
 pub(crate) mod iv;
+pub(crate) use cache::{MatrixCache, MatrixKey};
 pub(crate) use endpoints::{
     cached_endpoints, endpoint_net, endpoint_of, endpoints_of, from_endpoint, from_endpoints, store_endpoints, Arith,
     Endpoints,
@@ -78,35 +75,18 @@ impl Kernel {
     }
 }
 
-/// Keys of the per-kernel matrix cache (see [`Scalar::cached_matrix`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum MatrixKey {
-    /// Univariate L2 reduction, degree `n` to `k`.
-    UniReduce(usize, usize),
-    /// Triangular L2 reduction, degree `n` to `k`.
-    TriReduce(usize, usize),
-    /// Univariate degree elevation, degree `n` to `m`.
-    UniElevate(usize, usize),
-    /// Triangular degree elevation, degree `n` to `m`.
-    TriElevate(usize, usize),
-    /// Tensor bidegree `(m, n)` on the unit square to a triangle of degree `m + n`.
-    TensorToTri(usize, usize),
-    /// Weights of the triangular BB product of degrees `m` and `n`.
-    TriProduct(usize, usize),
-}
-
-type Cache<S> = Mutex<HashMap<MatrixKey, Arc<[S]>>>;
-
 /// A number type the Bernstein–Bézier algebra can run on.
 ///
-/// Implemented for `f64`, [`Interval`] and [`BigRational`]. Arithmetic is by
+/// Implemented for `f64`, [`Interval`] and [`BigRational`] (and sealed: the
+/// algebra relies on each kernel's exact-matrix cache). Arithmetic is by
 /// value (`Copy` kernels pay nothing for the clones generic code makes).
 ///
 /// Contract for the rigorous kernels ([`Kernel::is_rigorous`]): every
 /// operation returns an enclosure of the exact result for all members of its
 /// inputs; [`Scalar::sign_class`] and [`Scalar::mag`] answer for every member.
 pub trait Scalar:
-    Clone
+    cache::MatrixCache
+    + Clone
     + Debug
     + Send
     + Sync
@@ -152,106 +132,6 @@ pub trait Scalar:
     /// A single representative as a value of this kernel: the point interval
     /// at the midpoint for intervals, the value itself otherwise.
     fn to_point(&self) -> Self;
-    /// The per-kernel cache of rational matrices converted to this kernel.
-    fn matrix_cache() -> &'static Cache<Self>;
-
-    /// A matrix built once per key in exact arithmetic by `build` and cached
-    /// converted to this kernel (tightest intervals for [`Interval`]).
-    ///
-    /// Hot loops call this per operation, so a thread-local copy answers
-    /// repeat lookups without a lock; the process-wide cache behind it
-    /// ([`Scalar::matrix_cache`]) makes sure each matrix is built once.
-    fn cached_matrix(key: MatrixKey, build: impl FnOnce() -> Vec<BigRational>) -> Arc<[Self]> {
-        if let Some(m) = local_matrix::<Self>(key) {
-            return m;
-        }
-        let cache = Self::matrix_cache();
-        // Bind the lookup first: a guard held across the match would deadlock
-        // on the insert below.
-        let found = lock(cache).get(&key).cloned();
-        let shared = match found {
-            Some(m) => m,
-            None => {
-                let converted: Arc<[Self]> = build().iter().map(Self::from_rational).collect();
-                lock(cache).entry(key).or_insert(converted).clone()
-            }
-        };
-        // A private copy per thread keeps the reference count of a hot matrix
-        // off a cache line that other threads write.
-        let local: Arc<[Self]> = Arc::from(&shared[..]);
-        remember_local_matrix(key, local.clone());
-        local
-    }
-}
-
-/// Per-thread front of the matrix caches, keyed by kernel and matrix.
-type LocalCache = HashMap<(TypeId, MatrixKey), Box<dyn Any>, BuildHasherDefault<FxHasher>>;
-
-thread_local! {
-    static LOCAL_MATRICES: RefCell<LocalCache> =
-        const { RefCell::new(HashMap::with_hasher(BuildHasherDefault::new())) };
-}
-
-/// This thread's copy of matrix `key` with entries of type `T`, if any.
-fn local_matrix<T: 'static>(key: MatrixKey) -> Option<Arc<[T]>> {
-    LOCAL_MATRICES
-        .try_with(|c| {
-            let cache = c.borrow();
-            let entry = cache.get(&(TypeId::of::<T>(), key))?;
-            entry.downcast_ref::<Arc<[T]>>().cloned()
-        })
-        .ok()
-        .flatten()
-}
-
-fn remember_local_matrix<T: 'static>(key: MatrixKey, m: Arc<[T]>) {
-    // During thread teardown the local cache is gone; the global one still
-    // answers, so there is nothing to do.
-    let _ = LOCAL_MATRICES.try_with(|c| {
-        if let Ok(mut cache) = c.try_borrow_mut() {
-            cache.insert((TypeId::of::<T>(), key), Box::new(m));
-        }
-    });
-}
-
-/// The multiplicative hash of rustc's `FxHasher`: the keys are a few small
-/// integers, for which SipHash's flooding resistance buys nothing and costs
-/// more than the rest of a lookup.
-#[derive(Default)]
-struct FxHasher(u64);
-
-impl Hasher for FxHasher {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-    fn write(&mut self, bytes: &[u8]) {
-        for chunk in bytes.chunks(8) {
-            let mut word = [0u8; 8];
-            word[..chunk.len()].copy_from_slice(chunk);
-            self.write_u64(u64::from_le_bytes(word));
-        }
-    }
-    fn write_u64(&mut self, x: u64) {
-        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-    fn write_usize(&mut self, x: usize) {
-        self.write_u64(x as u64);
-    }
-}
-
-fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
-    // A panic while holding the lock cannot leave a half-written entry (insert is
-    // atomic from the map's view), so a poisoned cache is still sound.
-    m.lock().unwrap_or_else(|e| e.into_inner())
-}
-
-macro_rules! cache_fn {
-    ($t:ty) => {
-        fn matrix_cache() -> &'static Cache<$t> {
-            static CACHE: OnceLock<Cache<$t>> = OnceLock::new();
-            CACHE.get_or_init(Default::default)
-        }
-    };
 }
 
 impl Scalar for f64 {
@@ -306,7 +186,6 @@ impl Scalar for f64 {
     fn to_point(&self) -> Self {
         *self
     }
-    cache_fn!(f64);
 }
 
 impl Scalar for Interval {
@@ -385,7 +264,6 @@ impl Scalar for Interval {
             *self
         }
     }
-    cache_fn!(Interval);
 }
 
 impl Scalar for BigRational {
@@ -438,17 +316,16 @@ impl Scalar for BigRational {
     fn to_point(&self) -> Self {
         self.clone()
     }
-    cache_fn!(BigRational);
 }
 
 /// The point interval `[x, x]`. `x` must be finite (the caller's invariant).
-pub fn point(x: f64) -> Interval {
+pub(crate) fn point(x: f64) -> Interval {
     Interval::try_from((x, x)).unwrap_or(Interval::ENTIRE)
 }
 
 /// The interval `[lo, hi]`; the entire line if the bounds are NaN or reversed
 /// (always an enclosure, never a panic).
-pub fn interval(lo: f64, hi: f64) -> Interval {
+pub(crate) fn interval(lo: f64, hi: f64) -> Interval {
     Interval::try_from((lo, hi)).unwrap_or(Interval::ENTIRE)
 }
 
@@ -538,7 +415,7 @@ fn small_rational_to_interval(q: &BigRational) -> Option<Interval> {
 }
 
 /// `true` if the interval `x` contains the rational `q` (exact comparison).
-pub fn interval_contains_rational(x: Interval, q: &BigRational) -> bool {
+pub(crate) fn interval_contains_rational(x: Interval, q: &BigRational) -> bool {
     if x.is_empty() {
         return false;
     }

@@ -5,12 +5,14 @@
 //! probes, `plain` the same iteration in plain `f64`;
 //! `profile_one stats [EXAMPLE]` prints the counters of the certified and
 //! plain iterations.
-use inari::Interval;
-use rootclip::poly::TriBall;
-use rootclip::solve::driver::{self, Exact, Limits, Probe};
-use rootclip::solve::num::GeoIv;
-use rootclip::solve::{solve_triangle, solve_triangle_f64, Method, SolveOptions, SplitRule};
-use rootclip::{repro, Scalar, TriBezier};
+use rootclip::inari::Interval;
+use rootclip::internals::ball::TriBall;
+use rootclip::internals::driver::{self, Exact, Limits, Probe};
+use rootclip::internals::num::GeoIv;
+use rootclip::internals::repro;
+use rootclip::internals::{solve_triangle, solve_triangle_f64};
+use rootclip::solve::{Method, SolveOptions, SplitRule};
+use rootclip::{Scalar, TriBezier};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -53,9 +55,10 @@ fn main() {
         .iter()
         .find_map(|m| arg.strip_prefix(m).map(|rest| (*m, rest.parse().unwrap_or(200))))
         .expect("the empty prefix always matches");
-    let opts = SolveOptions {
-        probe: mode.is_empty(),
-        ..SolveOptions::default()
+    let opts = {
+        let mut o = SolveOptions::default();
+        o.probe = mode.is_empty();
+        o
     };
     if mode == "plain" {
         let (ff, gf) = (f.map(|x| x.mid()), g.map(|x| x.mid()));

@@ -1,5 +1,6 @@
-use inari::Interval;
-use rootclip::solve::{solve, solve_triangle, solve_triangle_f64, Domain, Method, SolveOptions};
+use rootclip::inari::Interval;
+use rootclip::internals::{solve_triangle, solve_triangle_f64};
+use rootclip::solve::{solve, Domain, Method, SolveOptions};
 use rootclip::{parse_polynomial, Scalar, TriBezier};
 use std::time::Instant;
 fn per_call(n: usize, mut f: impl FnMut()) -> f64 {
@@ -20,9 +21,10 @@ fn main() {
         );
         let (tf, gf): (TriBezier<f64>, TriBezier<f64>) = (ti.map(|x| x.mid()), gi.map(|x| x.mid()));
         for m in Method::ALL {
-            let o = SolveOptions {
-                method: m,
-                ..SolveOptions::default()
+            let o = {
+                let mut o = SolveOptions::default();
+                o.method = m;
+                o
             };
             let full = per_call(500, || {
                 drop(std::hint::black_box(solve(&f, &g, Domain::Triangle, &o).unwrap()))

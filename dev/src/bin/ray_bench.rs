@@ -4,7 +4,7 @@
 //!
 //! Rays: origins uniform on a sphere of radius 12 around the centre of the
 //! control net's bounding box, each aimed at a uniform point of that box
-//! (fixed seed; [`rootclip::ray::sample::aimed_rays`]). One thread per
+//! (fixed seed; [`rootclip::internals::aimed_rays`]). One thread per
 //! query, then the all-hits batch on every core (rayon). Checks, in the same
 //! run: the rectangle and triangle routes agree hit for hit (every certified
 //! hit of one overlaps a hit box of the other); the nearest and any-hit
@@ -14,10 +14,12 @@
 //! `cargo run --release --example ray_bench [N]` (default 10,000; the
 //! triangle route runs on the first N/10 rays only: it is ~25× slower).
 
-use rayon::prelude::*;
 use rootclip::heuristics::newton_ray_patch;
-use rootclip::ray::sample::aimed_rays;
-use rootclip::ray::{cli, intersect_with, Degeneracy, Hit, Query, Ray, RayOptions, RayOutcome, TensorRoute};
+use rootclip::internals::aimed_rays;
+use rootclip::ray::{
+    intersect, intersect_batch, Degeneracy, Hit, Patch, PatchSpec, Query, Ray, RayOptions, RayOutcome,
+};
+use rootclip::solve::SquareRoute;
 use std::time::Instant;
 
 fn hits(o: &RayOutcome) -> &[Hit] {
@@ -35,32 +37,33 @@ fn overlap(a: &Hit, b: &Hit) -> bool {
 fn run(
     patch: &rootclip::ray::Patch,
     rays: &[Ray],
-    route: TensorRoute,
+    route: SquareRoute,
     query: Query,
 ) -> Result<(Vec<RayOutcome>, f64), rootclip::Error> {
-    let opts = RayOptions {
-        route,
-        query,
-        ..RayOptions::default()
+    let opts = {
+        let mut o = RayOptions::default();
+        o.route = route;
+        o.query = query;
+        o
     };
     let t0 = Instant::now();
     let outs = rays
         .iter()
-        .map(|r| intersect_with(patch, r, &opts))
+        .map(|r| intersect(patch, r, &opts))
         .collect::<Result<Vec<_>, _>>()?;
     let us = t0.elapsed().as_secs_f64() * 1e6 / rays.len() as f64;
     let certified: usize = outs
         .iter()
-        .map(|o| hits(o).iter().filter(|h| h.certified).count())
+        .map(|o| hits(o).iter().filter(|h| h.is_certified()).count())
         .sum();
     let undecided: usize = outs
         .iter()
-        .map(|o| hits(o).iter().filter(|h| !h.certified).count())
+        .map(|o| hits(o).iter().filter(|h| !h.is_certified()).count())
         .sum();
     let degenerate = outs.iter().filter(|o| matches!(o, RayOutcome::Degenerate(_))).count();
     let widest = outs
         .iter()
-        .flat_map(|o| hits(o).iter().filter(|h| h.certified))
+        .flat_map(|o| hits(o).iter().filter(|h| h.is_certified()))
         .map(|h| (h.bx.u[1] - h.bx.u[0]).max(h.bx.v[1] - h.bx.v[0]))
         .fold(0.0f64, f64::max);
     println!(
@@ -74,15 +77,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let n: usize = std::env::args().nth(1).map_or(Ok(10_000), |s| s.parse())?;
     let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/seed000_example1.json"))?;
     let v: serde_json::Value = serde_json::from_str(&text)?;
-    let patch = cli::parse_patch(&v["patch"].to_string())?;
+    let spec: PatchSpec =
+        serde_json::from_value(v["patch"].clone()).map_err(|e| rootclip::Error::Format(e.to_string()))?;
+    let patch = Patch::from_spec(&spec)?;
     let rays = aimed_rays(&patch, n, 12.0, 0x9e37_79b9_7f4a_7c15);
-    println!("machine: {} threads available", rayon::current_num_threads());
+    println!(
+        "machine: {} threads available",
+        std::thread::available_parallelism().map_or(1, |n| n.get())
+    );
 
-    let (all, us_all) = run(&patch, &rays, TensorRoute::Rect, Query::All)?;
-    let (near, us_near) = run(&patch, &rays, TensorRoute::Rect, Query::Nearest)?;
-    let (any, us_any) = run(&patch, &rays, TensorRoute::Rect, Query::Any)?;
+    let (all, us_all) = run(&patch, &rays, SquareRoute::Rect, Query::All)?;
+    let (near, us_near) = run(&patch, &rays, SquareRoute::Rect, Query::Nearest)?;
+    let (any, us_any) = run(&patch, &rays, SquareRoute::Rect, Query::Any)?;
     let sub = &rays[..n.div_ceil(10)];
-    let (tri, us_tri) = run(&patch, sub, TensorRoute::Triangles, Query::All)?;
+    let (tri, us_tri) = run(&patch, sub, SquareRoute::Triangles, Query::All)?;
 
     // Agreement: routes, and queries against all hits.
     let disagree = all
@@ -93,7 +101,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             ha.iter().any(|x| !hb.iter().any(|y| overlap(x, y))) || hb.iter().any(|x| !ha.iter().any(|y| overlap(x, y)))
         })
         .count();
-    let first_certified = |o: &RayOutcome| hits(o).iter().find(|h| h.certified).cloned();
+    let first_certified = |o: &RayOutcome| hits(o).iter().find(|h| h.is_certified()).cloned();
     let near_wrong = all
         .iter()
         .zip(&near)
@@ -123,8 +131,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .map(|r| newton_ray_patch(&patch, r, (0.5, 0.5), 1e-12, 30))
         .collect();
     let us_newton = t0.elapsed().as_secs_f64() * 1e6 / n as f64;
-    let true_hits: usize = all.iter().map(|o| hits(o).iter().filter(|h| h.certified).count()).sum();
-    let rays_with_hits = all.iter().filter(|o| hits(o).iter().any(|h| h.certified)).count();
+    let true_hits: usize = all
+        .iter()
+        .map(|o| hits(o).iter().filter(|h| h.is_certified()).count())
+        .sum();
+    let rays_with_hits = all.iter().filter(|o| hits(o).iter().any(|h| h.is_certified())).count();
     let mut found = 0;
     let mut spurious = 0;
     for (o, nh) in all.iter().zip(&newton) {
@@ -147,12 +158,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // The all-hits batch on every core.
     let opts = RayOptions::default();
     let t0 = Instant::now();
-    let par: Vec<_> = rays.par_iter().map(|r| intersect_with(&patch, r, &opts)).collect();
+    let par = intersect_batch(&patch, &rays, &opts);
     let wall = t0.elapsed().as_secs_f64();
     let par_same = par.iter().zip(&all).all(|(p, a)| p.as_ref().ok() == Some(a));
     println!(
         "Rect All on {} threads: {:.3} s wall for {n} rays ({:.2} µs/ray), identical to the 1-thread run: {par_same}",
-        rayon::current_num_threads(),
+        std::thread::available_parallelism().map_or(1, |n| n.get()),
         wall,
         wall * 1e6 / n as f64
     );

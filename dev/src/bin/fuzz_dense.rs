@@ -4,7 +4,7 @@
 //! every Newton root inside the domain (and 1e-9 away from its boundary) must
 //! lie in a returned root or cluster box, and certified boxes must be
 //! pairwise disjoint. `fuzz_dense [count] [seed]`.
-use num_rational::BigRational;
+use rootclip::num_rational::BigRational;
 use rootclip::solve::{solve, Domain, SolveOptions};
 use rootclip::Polynomial;
 use std::time::Instant;
@@ -37,7 +37,7 @@ fn random_poly(rng: &mut Lcg, deg: u32) -> Polynomial {
 fn eval(p: &Polynomial, u: f64, v: f64) -> (f64, f64, f64) {
     let (mut val, mut du, mut dv) = (0.0, 0.0, 0.0);
     for (&(a, b), c) in p.terms() {
-        let c = num_traits::ToPrimitive::to_f64(c).unwrap();
+        let c = rootclip::scalar::rational_to_f64(c);
         val += c * u.powi(a as i32) * v.powi(b as i32);
         if a > 0 {
             du += c * a as f64 * u.powi(a as i32 - 1) * v.powi(b as i32);

@@ -2,7 +2,7 @@
 //! level — the raw material of Tables 1–6.
 //!
 //! `cargo run --release --example trace_dump -- 2 hc`
-use rootclip::repro;
+use rootclip::internals::repro;
 use rootclip::solve::Method;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

@@ -2,11 +2,12 @@
 //! certified solver's ball arithmetic (geometry in `GeoIv`) and in the plain
 //! `f64` iteration: subdivision, fat curves, preprocessing, a clip per method,
 //! the verified tri-box clip.
-use inari::Interval;
-use rootclip::poly::TriBall;
-use rootclip::solve::method::{clip_bounds, fat_curve, preprocess_general, Method};
-use rootclip::solve::num::GeoIv;
-use rootclip::solve::tribox::TriBox;
+use rootclip::inari::Interval;
+use rootclip::internals::ball::TriBall;
+use rootclip::internals::method::{clip_bounds, fat_curve, preprocess_general};
+use rootclip::internals::num::GeoIv;
+use rootclip::internals::tribox::TriBox;
+use rootclip::solve::Method;
 use rootclip::{parse_polynomial, Scalar};
 use std::time::Instant;
 fn time(name: &str, n: usize, mut f: impl FnMut()) {

@@ -1,0 +1,166 @@
+//! The CLI's JSON: the library's serde derives inside a versioned envelope,
+//! plus the English text and legacy flags beside the machine-readable codes.
+
+use crate::ray::{Hit, RayOutcome};
+use crate::solve::{Cluster, Solution, UndecidedReason};
+use serde::Serialize;
+
+/// Bumped whenever a key changes meaning or disappears (adding keys does not
+/// bump it).
+pub(super) const SCHEMA_VERSION: u32 = 1;
+
+#[derive(Serialize)]
+struct Envelope<'a, T: Serialize> {
+    schema_version: u32,
+    #[serde(flatten)]
+    body: &'a T,
+}
+
+/// `body` as one line of JSON with `"schema_version"` first.
+pub(super) fn document<T: Serialize>(body: &T) -> String {
+    let env = Envelope {
+        schema_version: SCHEMA_VERSION,
+        body,
+    };
+    serde_json::to_string(&env).unwrap_or_else(|e| format!("{{\"schema_version\":{SCHEMA_VERSION},\"error\":\"{e}\"}}"))
+}
+
+/// An undecided region with its reason's English text.
+#[derive(Serialize)]
+pub(super) struct ClusterJson<'a> {
+    #[serde(flatten)]
+    cluster: &'a Cluster,
+    reason_text: &'static str,
+}
+
+/// A solution as the CLI prints it: the derive's keys, roots with
+/// `"certified": true` (every listed root is), clusters with their text, and
+/// the counters with the run time.
+#[derive(Serialize)]
+pub(super) struct SolutionJson<'a> {
+    complete: bool,
+    roots: Vec<RootJson<'a>>,
+    clusters: Vec<ClusterJson<'a>>,
+    leftovers: &'a [crate::solve::Leftover],
+    stats: StatsJson,
+}
+
+#[derive(Serialize)]
+struct RootJson<'a> {
+    #[serde(flatten)]
+    root: &'a crate::solve::Root,
+    certified: bool,
+}
+
+#[derive(Serialize)]
+struct StatsJson {
+    tri_boxes: usize,
+    clips: usize,
+    role_swaps: usize,
+    splits: usize,
+    sign_exclusions: usize,
+    clip_exclusions: usize,
+    krawczyk_calls: usize,
+    krawczyk_exclusions: usize,
+    leaves: usize,
+    outside_domain: usize,
+    max_level: usize,
+    probes: usize,
+    compensated_boxes: usize,
+    exact_boxes: usize,
+    seconds: f64,
+}
+
+impl<'a> SolutionJson<'a> {
+    pub(super) fn new(sol: &'a Solution, seconds: f64) -> Self {
+        let s = &sol.stats;
+        Self {
+            complete: sol.complete,
+            roots: sol
+                .roots
+                .iter()
+                .map(|root| RootJson { root, certified: true })
+                .collect(),
+            clusters: sol
+                .clusters
+                .iter()
+                .map(|c| ClusterJson {
+                    cluster: c,
+                    reason_text: c.reason.describe(),
+                })
+                .collect(),
+            leftovers: &sol.leftovers,
+            stats: StatsJson {
+                tri_boxes: s.run.boxes,
+                clips: s.run.clips,
+                role_swaps: s.run.role_swaps,
+                splits: s.run.splits,
+                sign_exclusions: s.run.sign_exclusions,
+                clip_exclusions: s.run.clip_exclusions,
+                krawczyk_calls: s.krawczyk_calls,
+                krawczyk_exclusions: s.krawczyk_exclusions,
+                leaves: s.leaves,
+                outside_domain: s.outside_domain,
+                max_level: s.max_level,
+                probes: s.run.probes,
+                compensated_boxes: s.run.compensated_boxes,
+                exact_boxes: s.run.exact_boxes,
+                seconds,
+            },
+        }
+    }
+}
+
+/// A hit as the CLI prints it: the derive's keys (`status`, `reason`), the
+/// reason's text, and the flags of schema 0 (`certified`, `on_edge`,
+/// `t_straddles_zero`) derived from the status.
+#[derive(Serialize)]
+pub(super) struct HitJson<'a> {
+    #[serde(flatten)]
+    hit: &'a Hit,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    reason_text: Option<&'static str>,
+    certified: bool,
+    on_edge: bool,
+    t_straddles_zero: bool,
+}
+
+impl<'a> HitJson<'a> {
+    pub(super) fn new(hit: &'a Hit) -> Self {
+        let reason = hit.undecided_reason();
+        Self {
+            hit,
+            reason_text: reason.map(UndecidedReason::describe),
+            certified: hit.is_certified(),
+            on_edge: reason == Some(UndecidedReason::Boundary),
+            t_straddles_zero: reason == Some(UndecidedReason::RangeEnd),
+        }
+    }
+}
+
+/// One ray's answer: `complete`, the hits, and for a degenerate ray its
+/// reason (code and text).
+#[derive(Serialize)]
+pub(super) struct RayJson<'a> {
+    complete: bool,
+    hits: Vec<HitJson<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    degenerate: Option<&'static str>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    degenerate_code: Option<&'static str>,
+}
+
+impl<'a> RayJson<'a> {
+    pub(super) fn new(outcome: &'a RayOutcome, complete: bool, hits: Vec<&'a Hit>) -> Self {
+        let degeneracy = match outcome {
+            RayOutcome::Degenerate(d) => Some(d),
+            _ => None,
+        };
+        Self {
+            complete,
+            hits: hits.into_iter().map(HitJson::new).collect(),
+            degenerate: degeneracy.map(|d| d.describe()),
+            degenerate_code: degeneracy.map(|d| d.code()),
+        }
+    }
+}

@@ -1,0 +1,99 @@
+//! The `rootclip` command line (feature `cli`): a thin client of the library.
+//! Errors print one line on stderr and exit 2. Not part of the API.
+
+mod bernstein;
+mod json;
+mod ray;
+mod solve;
+mod tables;
+
+use crate::error::{Error, Result};
+use clap::{Parser, Subcommand};
+use std::io::{Read, Write};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "rootclip",
+    version,
+    about = "Certified roots of polynomial systems in Bernstein–Bézier form, and certified ray–patch hits"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Recompute Tables 1–6 of Liu et al. (2016) and print them beside the paper's.
+    Tables(tables::TablesArgs),
+    /// Every root of f = g = 0 in the domain, each in a certified box.
+    Solve(solve::SolveArgs),
+    /// Every hit of rays with a Bézier or B-spline patch, each certified.
+    Ray(ray::RayArgs),
+    /// Print the exact Bernstein–Bézier coefficients of a polynomial in u, v.
+    Bernstein(bernstein::BernsteinArgs),
+}
+
+/// Runs the command line: parses the arguments, runs the command, prints its
+/// output (or one error line) and returns the exit code (0, or 2 for bad
+/// input).
+pub fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) if !e.use_stderr() => {
+            // --help and --version: print as clap formats them, exit 0.
+            let _ = e.print();
+            return ExitCode::SUCCESS;
+        }
+        Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            eprintln!("rootclip: missing subcommand (bernstein, ray, solve, tables); see rootclip --help");
+            return ExitCode::from(2);
+        }
+        Err(e) => {
+            // One line: clap's message up to its usage block, joined.
+            let text = e.to_string();
+            let message: Vec<&str> = text
+                .lines()
+                .take_while(|l| !l.starts_with("Usage:"))
+                .map(|l| l.trim().trim_start_matches("error: "))
+                .filter(|l| !l.is_empty() && !l.starts_with("tip:") && !l.starts_with("For more information"))
+                .collect();
+            eprintln!("rootclip: {} (see rootclip --help)", message.join(" "));
+            return ExitCode::from(2);
+        }
+    };
+    let out = match cli.command {
+        Command::Bernstein(args) => bernstein::run(&args),
+        Command::Tables(args) => tables::run(&args),
+        Command::Ray(args) => ray::run(&args),
+        Command::Solve(args) => solve::run(&args),
+    };
+    match out {
+        Ok(out) => {
+            // A closed pipe (`rootclip ... | head`) is not an error worth a panic.
+            let _ = writeln!(std::io::stdout(), "{out}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            // One line, whatever the message holds.
+            eprintln!("rootclip: {}", e.to_string().replace(['\n', '\r'], " "));
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// The text of a file, or of standard input for `-`.
+fn read_input(path: &str) -> Result<String> {
+    let io = |e: std::io::Error| Error::Io {
+        path: path.to_string(),
+        message: e.to_string(),
+    };
+    if path == "-" {
+        let mut text = String::new();
+        std::io::stdin().read_to_string(&mut text).map_err(io)?;
+        Ok(text)
+    } else {
+        std::fs::read_to_string(path).map_err(io)
+    }
+}

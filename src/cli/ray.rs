@@ -1,0 +1,201 @@
+//! `rootclip ray`: PATCH.json in, certified hits (text or JSON) out.
+//!
+//! PATCH.json is a [`PatchSpec`] (unknown keys are errors); B-spline hits are
+//! reported in knot parameters. RAYS.txt: one ray per line,
+//! `ox oy oz dx dy dz` (blank lines and `#` comments are skipped). JSON out:
+//! `{"schema_version": 1, "rays": [{"complete": …, "hits": […]}]}`, one entry
+//! per ray in input order; a degenerate ray has `"complete": false` and a
+//! `"degenerate"` reason with its `"degenerate_code"`.
+
+use super::json::{document, RayJson};
+use super::read_input;
+use crate::error::{Error, Result};
+use crate::ray::{intersect, Hit, Patch, PatchSpec, Query, Ray, RayOptions, RayOutcome};
+use crate::solve::SquareRoute;
+use glam::DVec3;
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// Arguments of `rootclip ray`.
+#[derive(Clone, Debug, clap::Args)]
+pub(super) struct RayArgs {
+    /// PATCH.json ("-" for stdin): {"type": "triangle" | "tensor" | "bspline", "degree": ..., "points": [[x, y, z], ...], "weights": [...]}; B-splines also "knots_u", "knots_v".
+    #[arg(long)]
+    patch: String,
+    /// Origin x,y,z of a single ray (with --dir).
+    #[arg(long, allow_hyphen_values = true)]
+    origin: Option<String>,
+    /// Direction x,y,z of a single ray (with --origin; not normalized).
+    #[arg(long, allow_hyphen_values = true)]
+    dir: Option<String>,
+    /// RAYS.txt ("-" for stdin): one ray per line, "ox oy oz dx dy dz".
+    #[arg(long)]
+    rays: Option<String>,
+    /// Only the hits that may be the nearest (a single certified hit is the
+    /// proven nearest); regions provably farther are never explored.
+    #[arg(long, conflicts_with = "any")]
+    nearest: bool,
+    /// Any one certified hit (shadow rays): the search stops at the first.
+    #[arg(long)]
+    any: bool,
+    /// Only hits with t >= T_MIN (default 0; may be negative: the line behind the origin).
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.0)]
+    t_min: f64,
+    /// Only hits with t <= T_MAX (default: no limit).
+    #[arg(long, allow_negative_numbers = true)]
+    t_max: Option<f64>,
+    /// How tensor patches are solved: natively on boxes, or as two triangles.
+    #[arg(long, value_enum, default_value = "rect")]
+    route: SquareRoute,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Runs the command and returns its output. Batches run in parallel (rayon),
+/// with a progress bar on a terminal; the output is in input order.
+pub(super) fn run(args: &RayArgs) -> Result<String> {
+    if args.patch == "-" && args.rays.as_deref() == Some("-") {
+        return Err(Error::InvalidOption(
+            "--patch and --rays cannot both read standard input".into(),
+        ));
+    }
+    let patch = parse_patch(&read_input(&args.patch)?)?;
+    let rays = match (&args.origin, &args.dir, &args.rays) {
+        (Some(o), Some(d), None) => vec![Ray::new(parse_vec3("--origin", o)?, parse_vec3("--dir", d)?)?],
+        (None, None, Some(path)) => parse_rays(&read_input(path)?)?,
+        _ => {
+            return Err(Error::InvalidOption(
+                "give either --origin and --dir, or --rays (not both)".into(),
+            ))
+        }
+    };
+    let query = if args.nearest {
+        Query::Nearest
+    } else if args.any {
+        Query::Any
+    } else {
+        Query::All
+    };
+    let opts = RayOptions::default()
+        .with_query(query)
+        .with_route(args.route)
+        .with_t_range(args.t_min, args.t_max.unwrap_or(f64::INFINITY));
+    opts.validate()?;
+    let bar = indicatif::ProgressBar::new(rays.len() as u64);
+    if rays.len() < 1000 {
+        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    }
+    let outcomes = rays
+        .par_iter()
+        .map(|r| {
+            let out = intersect(&patch, r, &opts);
+            bar.inc(1);
+            out
+        })
+        .collect::<Result<Vec<_>>>()?;
+    bar.finish_and_clear();
+    let nearest = args.nearest;
+    Ok(if args.json {
+        #[derive(Serialize)]
+        struct Rays<'a> {
+            rays: Vec<RayJson<'a>>,
+        }
+        let rays = outcomes
+            .iter()
+            .map(|o| {
+                let (complete, hits) = selected(o, nearest);
+                RayJson::new(o, complete, hits)
+            })
+            .collect();
+        document(&Rays { rays })
+    } else {
+        outcomes
+            .iter()
+            .enumerate()
+            .map(|(k, o)| outcome_text(k, o, nearest))
+            .collect::<Vec<_>>()
+            .join("\n")
+    })
+}
+
+/// Parses PATCH.json (a [`PatchSpec`]) and validates the patch.
+pub(super) fn parse_patch(text: &str) -> Result<Patch> {
+    let spec: PatchSpec = serde_json::from_str(text).map_err(|e| Error::Format(format!("PATCH.json: {e}")))?;
+    Patch::from_spec(&spec)
+}
+
+fn parse_vec3(what: &str, s: &str) -> Result<DVec3> {
+    let c: Vec<f64> = s
+        .split(',')
+        .map(|x| {
+            x.trim()
+                .parse::<f64>()
+                .map_err(|_| Error::InvalidOption(format!("{what}: {x:?} is not a number")))
+        })
+        .collect::<Result<_>>()?;
+    if c.len() != 3 {
+        return Err(Error::InvalidOption(format!("{what} needs x,y,z, got {s:?}")));
+    }
+    Ok(DVec3::new(c[0], c[1], c[2]))
+}
+
+/// Parses RAYS.txt: `ox oy oz dx dy dz` per line.
+pub(super) fn parse_rays(text: &str) -> Result<Vec<Ray>> {
+    let mut rays = Vec::new();
+    for (k, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let c: Vec<f64> = line
+            .split_whitespace()
+            .map(|x| {
+                x.parse::<f64>()
+                    .map_err(|_| Error::Format(format!("RAYS line {}: {x:?} is not a number", k + 1)))
+            })
+            .collect::<Result<_>>()?;
+        if c.len() != 6 {
+            return Err(Error::Format(format!(
+                "RAYS line {}: need 6 numbers, got {}",
+                k + 1,
+                c.len()
+            )));
+        }
+        let ray = Ray::new(DVec3::new(c[0], c[1], c[2]), DVec3::new(c[3], c[4], c[5]))
+            .map_err(|e| Error::Format(format!("RAYS line {}: {e}", k + 1)))?;
+        rays.push(ray);
+    }
+    Ok(rays)
+}
+
+fn selected(o: &RayOutcome, nearest: bool) -> (bool, Vec<&Hit>) {
+    match o {
+        RayOutcome::Hits(h) if nearest => (h.complete, h.nearest()),
+        RayOutcome::Hits(h) => (h.complete, h.hits.iter().collect()),
+        _ => (false, o.hits().iter().collect()),
+    }
+}
+
+fn outcome_text(k: usize, o: &RayOutcome, nearest: bool) -> String {
+    let (complete, hits) = selected(o, nearest);
+    let mut out = format!(
+        "ray {k}: {} hit(s){}",
+        hits.len(),
+        if complete { ", complete" } else { "" }
+    );
+    if let Some(reason) = o.degenerate_reason() {
+        out += &format!(", DEGENERATE: {reason}");
+    }
+    for h in hits {
+        let status = match h.undecided_reason() {
+            None => String::new(),
+            Some(r) => format!("  (undecided: {})", r.describe()),
+        };
+        out += &format!(
+            "\n  t = {:.17} u = {:.17} v = {:.17} point [{:e}, {:e}, {:e}] normal [{:.6}, {:.6}, {:.6}]  t box [{:e}, {:e}]{status}",
+            h.t, h.u, h.v, h.point.x, h.point.y, h.point.z, h.normal.x, h.normal.y, h.normal.z, h.bx.t[0], h.bx.t[1]
+        );
+    }
+    out
+}

@@ -1,0 +1,141 @@
+//! The box route for tensor patches: the reduction in [`Iv`] arithmetic and
+//! Bézier (or fat-line, or hybrid) clipping on boxes, with the query's
+//! pruning inside the solve.
+
+use super::bezier::{finish, region_hit, sort_by_t, BezierRef};
+use super::{Degeneracy, Hit, Query, Ray, RayHits, RayOptions, RayOutcome, TensorPatch};
+use crate::error::{Error, Result};
+use crate::scalar::iv::Iv;
+use crate::solve::rect::{eval_box, solve_rect_iv, RectClip, RectOptions, RectProblem};
+use crate::solve::{Box2, SquareRoute};
+
+/// The objective floor and the query handed to the box solver. Its objective
+/// `h/W` has the sign of `t`, so a range starting at 0 is the floor `0`
+/// exactly; any other finite start would need a rigorous bound on both sides
+/// of the rounding, so the solve then lists every root and the hit level
+/// filters and selects. An `Any` query with a finite end asks the solver for
+/// the nearest root instead of the first: the first may lie past the end.
+fn solver_query(opts: &RayOptions) -> (Option<f64>, Query) {
+    let [lo, hi] = opts.t_range;
+    let (key_min, mut query) = if lo == 0.0 {
+        (Some(0.0), opts.query)
+    } else if lo == f64::NEG_INFINITY {
+        (None, opts.query)
+    } else {
+        (None, Query::All)
+    };
+    if query == Query::Any && hi.is_finite() {
+        query = Query::Nearest;
+    }
+    (key_min, query)
+}
+
+/// The tensor route through [`solve_rect`], in [`Iv`] arithmetic throughout:
+/// the reduction, the objective `h = (wP − w o)·d̃` (so `t = 2^s h / (w |d̃|²)`),
+/// and the `t` enclosures of the hits.
+pub(super) fn intersect_rect(p: &TensorPatch, ray: &Ray, opts: &RayOptions) -> Result<RayOutcome> {
+    let (m, n) = p.degree();
+    let d = ray.dir();
+    let e = d.abs().max_element().log2().floor().clamp(-1022.0, 1023.0) as i32;
+    let scale = 2f64.powi(-e);
+    let dt = d.to_array().map(|x| Iv::point(x).scale(scale));
+    let a = d.abs();
+    let axis = if a.x <= a.y && a.x <= a.z {
+        0
+    } else if a.y <= a.z {
+        1
+    } else {
+        2
+    };
+    let mut e_a = [Iv::point(0.0); 3];
+    e_a[axis] = Iv::point(1.0);
+    let cross = |a: [Iv; 3], b: [Iv; 3]| {
+        [
+            a[1].mul(b[2]).sub(a[2].mul(b[1])),
+            a[2].mul(b[0]).sub(a[0].mul(b[2])),
+            a[0].mul(b[1]).sub(a[1].mul(b[0])),
+        ]
+    };
+    let n1 = cross(e_a, dt);
+    let n2 = cross(dt, n1);
+    let dot = |a: &[Iv; 3], b: &[Iv; 3]| a[0].mul(b[0]).add(a[1].mul(b[1])).add(a[2].mul(b[2]));
+    let o = ray.origin().to_array();
+    let len = (m + 1) * (n + 1);
+    let (mut f, mut g, mut h) = (
+        Vec::with_capacity(len),
+        Vec::with_capacity(len),
+        Vec::with_capacity(len),
+    );
+    let weights = p.weights();
+    for hom in p.ivnet() {
+        // (wP − w o), from the homogeneous enclosures (w = 1 exactly for a
+        // polynomial patch).
+        let q: [Iv; 3] = match weights {
+            None => std::array::from_fn(|c| hom[c].sub(Iv::point(o[c]))),
+            Some(_) => std::array::from_fn(|c| hom[c].sub(hom[3].mul(Iv::point(o[c])))),
+        };
+        f.push(dot(&n1, &q));
+        g.push(dot(&n2, &q));
+        h.push(dot(&dt, &q));
+    }
+    let one_signed = |c: &[Iv]| c.iter().all(|x| x.lo > 0.0) || c.iter().all(|x| x.hi < 0.0);
+    // (Every h_ij < 0: t < 0 on the whole patch.)
+    if one_signed(&f) || one_signed(&g) || (opts.t_range[0] >= 0.0 && h.iter().all(|x| x.hi < 0.0)) {
+        return Ok(RayOutcome::Hits(RayHits {
+            complete: true,
+            hits: Vec::new(),
+        }));
+    }
+    let maybe_zero = |c: &[Iv]| c.iter().all(|x| x.lo <= 0.0 && x.hi >= 0.0);
+    if maybe_zero(&f) || maybe_zero(&g) {
+        return Ok(RayOutcome::Degenerate(Degeneracy::ZeroEquation));
+    }
+    let den: Option<Vec<Iv>> = weights.map(|_| p.ivnet().iter().map(|h| h[3]).collect());
+    let unit = [[Iv::point(0.0), Iv::point(1.0)]; 2];
+    let (key_min, query) = solver_query(opts);
+    let problem = RectProblem {
+        m,
+        n,
+        domain: unit,
+        f,
+        g,
+        num: Some(h.clone()),
+        den: den.clone(),
+    };
+    let ropts = RectOptions {
+        eps: opts.solve.eps,
+        max_boxes: opts.solve.max_boxes,
+        query,
+        key_min,
+        clip: match opts.route {
+            SquareRoute::RectFatLine => RectClip::FatLine,
+            SquareRoute::RectHybrid => RectClip::Hybrid,
+            _ => RectClip::Bezier,
+        },
+    };
+    let sol = match solve_rect_iv(problem, &ropts) {
+        Ok(r) => r.solution,
+        Err(Error::Degenerate(_)) => return Ok(RayOutcome::Degenerate(Degeneracy::ZeroEquation)),
+        Err(e) => return Err(e),
+    };
+    let d2 = dot(&dt, &dt);
+    let t_of = |bx: Box2| {
+        let num = eval_box(&h, m, n, bx.u, bx.v);
+        let w = den.as_ref().map_or(Iv::point(1.0), |w| eval_box(w, m, n, bx.u, bx.v));
+        num.div(w.mul(d2)).scale(scale)
+    };
+    let b = BezierRef::Tensor(p);
+    let regions = sol
+        .roots
+        .iter()
+        .map(|r| (r.bx, None))
+        .chain(sol.clusters.iter().map(|c| (c.bx, Some(c.reason))));
+    let mut hits: Vec<Hit> = regions
+        .filter_map(|(bx, cluster)| {
+            let t = t_of(bx);
+            region_hit(b, ray, bx, cluster, [t.lo, t.hi], opts.t_range)
+        })
+        .collect();
+    sort_by_t(&mut hits);
+    Ok(finish(&mut hits, sol.complete, sol.clusters.len(), opts.query))
+}

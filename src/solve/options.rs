@@ -1,0 +1,181 @@
+//! What a solve is asked: the domain, the method and its budgets.
+
+use super::driver::{self, Limits, SplitRule};
+use super::method::Method;
+use crate::error::{Error, Result};
+
+/// The domain of the unknowns.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "snake_case")
+)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+pub enum Domain {
+    /// `{u, v ≥ 0, u + v ≤ 1}`.
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "the unit triangle {u, v >= 0, u + v <= 1}; degree = total degree")
+    )]
+    Triangle,
+    /// `[0, 1]²`.
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "the unit square [0, 1]^2; bidegree = (degree in u, degree in v)")
+    )]
+    Square,
+}
+
+/// How a system on the unit square (a tensor patch, for rays) is solved.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "snake_case")
+)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+pub enum SquareRoute {
+    /// As two triangles of degree `m + n` with the chosen [`Method`] (the
+    /// conversion of Liu et al. 2016).
+    #[default]
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "two triangles of degree m + n, clipped with --method")
+    )]
+    Triangles,
+    /// Natively on boxes by Bézier clipping (Nishita, Sederberg & Kakimoto
+    /// 1990; `method`, `probe`, `split` and `max_depth` do not apply),
+    /// falling back to [`SquareRoute::Triangles`] when its budget runs out.
+    #[cfg_attr(feature = "cli", value(help = "Bezier clipping on boxes"))]
+    Rect,
+    /// As [`SquareRoute::Rect`] with fat-line clipping on boxes.
+    #[cfg_attr(feature = "cli", value(help = "fat-line clipping on boxes"))]
+    RectFatLine,
+    /// As [`SquareRoute::Rect`] with hybrid clipping (a fat line and a fat
+    /// conic) on boxes.
+    #[cfg_attr(feature = "cli", value(help = "hybrid clipping (fat line and fat conic) on boxes"))]
+    RectHybrid,
+}
+
+/// Options of a solve. Start from [`SolveOptions::default`] and change what
+/// you need:
+///
+/// ```
+/// use rootclip::solve::{Method, SolveOptions};
+/// let opts = SolveOptions::default().with_method(Method::Bezier).with_eps(1e-10);
+/// assert_eq!(opts.max_boxes, 50_000);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(default, deny_unknown_fields)
+)]
+pub struct SolveOptions {
+    /// Clipping method on triangles (default [`Method::Hc`]).
+    pub method: Method,
+    /// Regions are refined until their diameter is below `eps` (default
+    /// `1e-12`; any positive finite number); certified boxes are then
+    /// contracted by Krawczyk iteration, usually far below `eps`.
+    pub eps: f64,
+    /// Budget: tri-boxes (or boxes) processed per triangle (or per box
+    /// solve); default 50,000. A run that reaches it ends with
+    /// `complete = false` and its leftovers.
+    pub max_boxes: usize,
+    /// Budget: recursion depth (default 400).
+    pub max_depth: usize,
+    /// Probe converging or stalled tri-boxes with Krawczyk during the
+    /// iteration, certify or exclude them early, and stop refining undecided
+    /// ones at multiple roots (default `true`). A probe only ever proves; it
+    /// decides where the iteration stops, not what is true. `false` runs the
+    /// paper's Algorithm 1 without probes (the tables do).
+    pub probe: bool,
+    /// When a step splits 1-to-4 (default [`SplitRule::Halving`]).
+    pub split: SplitRule,
+    /// Before a split, a second hybrid clip with the equations' roles
+    /// swapped (default `true`; `false` with `probe = false` is the paper's
+    /// Algorithm 1 as printed).
+    pub swap_roles: bool,
+    /// How [`Domain::Square`] is solved (default [`SquareRoute::Triangles`],
+    /// the paper's conversion).
+    pub square_route: SquareRoute,
+}
+
+impl Default for SolveOptions {
+    fn default() -> Self {
+        Self {
+            method: Method::Hc,
+            eps: 1e-12,
+            max_boxes: 50_000,
+            max_depth: 400,
+            probe: true,
+            split: SplitRule::Halving,
+            swap_roles: true,
+            square_route: SquareRoute::Triangles,
+        }
+    }
+}
+
+impl SolveOptions {
+    /// The same options with `method`.
+    pub fn with_method(mut self, method: Method) -> Self {
+        self.method = method;
+        self
+    }
+
+    /// The same options with `eps`.
+    pub fn with_eps(mut self, eps: f64) -> Self {
+        self.eps = eps;
+        self
+    }
+
+    /// The same options with the budget `max_boxes`.
+    pub fn with_max_boxes(mut self, max_boxes: usize) -> Self {
+        self.max_boxes = max_boxes;
+        self
+    }
+
+    /// The same options with the square route.
+    pub fn with_square_route(mut self, route: SquareRoute) -> Self {
+        self.square_route = route;
+        self
+    }
+
+    /// Checks the options: `eps` must be positive and finite, the budgets
+    /// non-zero ([`Error::InvalidOption`]).
+    ///
+    /// ```
+    /// use rootclip::solve::SolveOptions;
+    /// assert!(SolveOptions::default().with_eps(f64::NAN).validate().is_err());
+    /// ```
+    pub fn validate(&self) -> Result<()> {
+        if !(self.eps.is_finite() && self.eps > 0.0) {
+            return Err(Error::InvalidOption(format!(
+                "eps must be a positive finite number, got {}",
+                self.eps
+            )));
+        }
+        if self.max_boxes == 0 || self.max_depth == 0 {
+            return Err(Error::InvalidOption(
+                "max_boxes and max_depth must be at least 1".into(),
+            ));
+        }
+        Ok(())
+    }
+
+    pub(crate) fn limits(&self) -> Limits {
+        Limits {
+            method: self.method,
+            eps: self.eps,
+            max_boxes: self.max_boxes,
+            max_depth: self.max_depth,
+            max_exact: driver::MAX_EXACT_BOXES,
+            probe_below: if self.probe { 1e-3 } else { 0.0 },
+            split: self.split,
+            swap_roles: self.swap_roles,
+        }
+    }
+}

@@ -1,0 +1,289 @@
+//! The `rootclip` binary's input and output as a user sees them: `ray` and
+//! `solve` run as processes, files and standard input, the JSON schema
+//! (version, status and reason codes), and one clean error line for bad input.
+
+use serde_json::Value;
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::{Command, Output, Stdio};
+
+fn run_with_stdin(args: &[&str], stdin: &str) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_rootclip"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    child
+        .stdin
+        .take()
+        .expect("stdin")
+        .write_all(stdin.as_bytes())
+        .expect("write stdin");
+    child.wait_with_output().expect("the binary ends")
+}
+
+fn run(args: &[&str]) -> Output {
+    run_with_stdin(args, "")
+}
+
+fn ok_json(args: &[&str], stdin: &str) -> Value {
+    let out = run_with_stdin(args, stdin);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{args:?}: {stderr}");
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{args:?}: not JSON ({e})"));
+    assert_eq!(v["schema_version"], 1, "{args:?}: {v}");
+    v
+}
+
+/// Exit code 2, nothing on stdout, one line on stderr starting `rootclip: `.
+fn fails_cleanly(args: &[&str], stdin: &str) -> String {
+    let out = run_with_stdin(args, stdin);
+    let stderr = String::from_utf8(out.stderr).expect("UTF-8 stderr");
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+    assert!(
+        out.stdout.is_empty(),
+        "{args:?}: stdout {:?}",
+        String::from_utf8_lossy(&out.stdout)
+    );
+    assert!(
+        stderr.starts_with("rootclip: ") && stderr.ends_with('\n'),
+        "{args:?}: {stderr:?}"
+    );
+    assert_eq!(stderr.lines().count(), 1, "{args:?}: {stderr:?}");
+    stderr
+}
+
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(name: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("rootclip_{name}_{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        Self(dir)
+    }
+    fn file(&self, name: &str, text: &str) -> String {
+        let p = self.0.join(name);
+        std::fs::write(&p, text).unwrap();
+        p.display().to_string()
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        std::fs::remove_dir_all(&self.0).ok();
+    }
+}
+
+const FLAT: &str = r#"{"type":"triangle","degree":1,"points":[[0,0,0],[1,0,0],[0,1,0]]}"#;
+
+#[test]
+fn ray_json_and_errors() {
+    let dir = TempDir::new("ray_cli");
+    let patch = dir.file("patch.json", FLAT);
+    let rays = dir.file("rays.txt", "# two rays\n0.25 0.5 1  0 0 -1\n5 5 1 0 0 -1\n");
+    let out = ok_json(&["ray", "--patch", &patch, "--rays", &rays, "--json"], "");
+    let list = out["rays"].as_array().unwrap();
+    assert_eq!(list.len(), 2);
+    assert_eq!(list[0]["hits"].as_array().unwrap().len(), 1);
+    let hit = &list[0]["hits"][0];
+    assert_eq!(hit["certified"], true);
+    assert_eq!(hit["status"], "certified");
+    assert!(hit.get("reason").is_none(), "{hit}");
+    assert_eq!(hit["normal"].as_array().unwrap().len(), 3);
+    assert_eq!(hit["box"]["t"].as_array().unwrap().len(), 2);
+    assert_eq!(list[1]["complete"], true);
+    assert!(list[1]["hits"].as_array().unwrap().is_empty());
+    // A single ray, text: the hit line shows the normal.
+    let out = run(&[
+        "ray",
+        "--patch",
+        &patch,
+        "--origin",
+        "0.25,0.5,1",
+        "--dir",
+        "0,0,-1",
+        "--nearest",
+    ]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.starts_with("ray 0: 1 hit(s), complete"), "{text}");
+    assert!(text.contains("normal [0.000000, 0.000000, 1.000000]"), "{text}");
+    // Both a single ray and a file: invalid option.
+    let err = fails_cleanly(
+        &[
+            "ray", "--patch", &patch, "--rays", &rays, "--origin", "0,0,0", "--dir", "0,0,1",
+        ],
+        "",
+    );
+    assert!(err.contains("invalid option"), "{err}");
+    // A wrong number of points, a negative weight, a misspelled key.
+    let bad = dir.file("bad.json", r#"{"type":"tensor","degree":[1,1],"points":[[0,0,0]]}"#);
+    assert!(fails_cleanly(&["ray", "--patch", &bad, "--rays", &rays], "").contains("shape"));
+    let neg = dir.file(
+        "neg.json",
+        r#"{"type":"triangle","degree":1,"points":[[0,0,0],[1,0,0],[0,1,0]],"weights":[1,-1,1]}"#,
+    );
+    assert!(fails_cleanly(&["ray", "--patch", &neg, "--rays", &rays], "").contains("degenerate"));
+    let typo = dir.file(
+        "typo.json",
+        r#"{"type":"triangle","degree":1,"points":[[0,0,0],[1,0,0],[0,1,0]],"weight":[1,1,1]}"#,
+    );
+    let err = fails_cleanly(&["ray", "--patch", &typo, "--rays", &rays], "");
+    assert!(err.contains("weight"), "{err}");
+    // A missing file is an I/O error, not a shape error.
+    let err = fails_cleanly(&["ray", "--patch", "/nonexistent/patch.json", "--rays", &rays], "");
+    assert!(err.contains("cannot read /nonexistent/patch.json"), "{err}");
+    // A malformed ray line names its line.
+    let badrays = dir.file("badrays.txt", "0 0 1 0 0 -1\n0 0 1 0 0\n");
+    let err = fails_cleanly(&["ray", "--patch", &patch, "--rays", &badrays], "");
+    assert!(err.contains("line 2"), "{err}");
+}
+
+#[test]
+fn ray_reads_standard_input() {
+    let dir = TempDir::new("ray_stdin");
+    let patch = dir.file("patch.json", FLAT);
+    let rays = dir.file("rays.txt", "0.25 0.5 1 0 0 -1\n");
+    let a = ok_json(&["ray", "--patch", "-", "--rays", &rays, "--json"], FLAT);
+    let b = ok_json(
+        &["ray", "--patch", &patch, "--rays", "-", "--json"],
+        "0.25 0.5 1 0 0 -1\n",
+    );
+    assert_eq!(a, b);
+    assert_eq!(a["rays"][0]["hits"][0]["certified"], true);
+    fails_cleanly(&["ray", "--patch", "-", "--rays", "-"], FLAT);
+}
+
+/// The `t` range: a hit at t = 1 is dropped by `--t-max 0.5`, kept by
+/// `--t-min 1`; the origin exactly on the surface (t = 0) is a certified hit
+/// of the default range `[0, ∞]` and of `--t-min 0`, and none of `--t-min
+/// 1e-300` (settled exactly).
+#[test]
+fn ray_t_range() {
+    let dir = TempDir::new("ray_range");
+    let patch = dir.file("patch.json", FLAT);
+    let hits = |extra: &[&str], origin: &str| -> Vec<Value> {
+        let mut args = vec![
+            "ray", "--patch", &patch, "--origin", origin, "--dir", "0,0,-1", "--json",
+        ];
+        args.extend_from_slice(extra);
+        ok_json(&args, "")["rays"][0]["hits"].as_array().unwrap().clone()
+    };
+    assert_eq!(hits(&[], "0.25,0.25,1").len(), 1);
+    assert!(hits(&["--t-max", "0.5"], "0.25,0.25,1").is_empty());
+    assert_eq!(hits(&["--t-min", "1"], "0.25,0.25,1")[0]["status"], "certified");
+    assert!(hits(&["--t-min", "1.0000001"], "0.25,0.25,1").is_empty());
+    let on = hits(&[], "0.25,0.25,0");
+    assert_eq!(on.len(), 1, "{on:?}");
+    assert_eq!(on[0]["status"], "certified", "{on:?}");
+    assert!(hits(&["--t-min", "1e-300"], "0.25,0.25,0").is_empty());
+    // The whole line: a hit behind the origin.
+    let behind = hits(&["--t-min", "-10"], "0.25,0.25,-1");
+    assert_eq!(behind.len(), 1, "{behind:?}");
+    assert!((behind[0]["t"].as_f64().unwrap() + 1.0).abs() < 1e-12);
+    fails_cleanly(
+        &[
+            "ray", "--patch", &patch, "--origin", "0,0,1", "--dir", "0,0,-1", "--t-min", "2", "--t-max", "1",
+        ],
+        "",
+    );
+    fails_cleanly(
+        &[
+            "ray", "--patch", &patch, "--origin", "0,0,1", "--dir", "0,0,-1", "--t-min", "nan",
+        ],
+        "",
+    );
+}
+
+/// `bernstein --json` output is what `solve --f-bb` reads: the same system
+/// from expressions and from BB files gives the same roots.
+#[test]
+fn solve_from_bb_files() {
+    let dir = TempDir::new("solve_bb");
+    for (domain, f, g) in [
+        ("triangle", "u^3 - v", "u^3 + v - 1/4"),
+        ("square", "u*v - 1/8", "u - v"),
+    ] {
+        let bb = |e: &str| {
+            let out = run(&["bernstein", "--f", e, "--domain", domain, "--json"]);
+            assert!(out.status.success());
+            String::from_utf8(out.stdout).unwrap()
+        };
+        let (fp, gp) = (dir.file("f.json", &bb(f)), dir.file("g.json", &bb(g)));
+        let from_bb = ok_json(&["solve", "--f-bb", &fp, "--g-bb", &gp, "--json"], "");
+        let from_expr = ok_json(&["solve", "--f", f, "--g", g, "--domain", domain, "--json"], "");
+        assert_eq!(from_bb["roots"], from_expr["roots"], "{domain}");
+        assert_eq!(from_bb["roots"].as_array().unwrap().len(), 1, "{domain}");
+        assert_eq!(from_bb["complete"], true);
+        // Standard input for one of them.
+        let stdin = ok_json(&["solve", "--f-bb", "-", "--g-bb", &gp, "--json"], &bb(f));
+        assert_eq!(stdin["roots"], from_expr["roots"]);
+    }
+    // Hand-written: JSON numbers are exact floats, strings exact rationals.
+    let f = dir.file(
+        "hf.json",
+        r#"{"domain":"triangle","degree":1,"coefficients":[
+            {"i":0,"j":0,"k":1,"value":-0.25},{"i":1,"j":0,"k":0,"value":"3/4"},{"i":0,"j":1,"k":0,"value":-0.25}]}"#,
+    );
+    let g = dir.file(
+        "hg.json",
+        r#"{"domain":"triangle","degree":1,"coefficients":[
+            {"i":0,"j":0,"k":1,"value":"-1/2"},{"i":1,"j":0,"k":0,"value":"-0.5"},{"i":0,"j":1,"k":0,"value":0.5}]}"#,
+    );
+    let sol = ok_json(&["solve", "--f-bb", &f, "--g-bb", &g, "--json"], "");
+    let r = &sol["roots"][0]["box"];
+    assert!(
+        r["u"][0].as_f64().unwrap() <= 0.25 && 0.25 <= r["u"][1].as_f64().unwrap(),
+        "{sol}"
+    );
+    assert!(
+        r["v"][0].as_f64().unwrap() <= 0.5 && 0.5 <= r["v"][1].as_f64().unwrap(),
+        "{sol}"
+    );
+    // A missing coefficient, an unknown key, mixed domains, a common factor.
+    let missing = dir.file(
+        "missing.json",
+        r#"{"domain":"triangle","degree":1,"coefficients":[{"i":0,"j":0,"k":1,"value":"1"}]}"#,
+    );
+    assert!(fails_cleanly(&["solve", "--f-bb", &missing, "--g-bb", &g], "").contains("missing"));
+    let unknown = dir.file(
+        "unknown.json",
+        r#"{"domain":"triangle","degree":0,"coefficients":[],"extra":1}"#,
+    );
+    assert!(fails_cleanly(&["solve", "--f-bb", &unknown, "--g-bb", &g], "").contains("extra"));
+    let square = dir.file(
+        "sq.json",
+        r#"{"domain":"square","degree":[0,0],"coefficients":[{"i":0,"j":0,"value":"1"}]}"#,
+    );
+    fails_cleanly(&["solve", "--f-bb", &square, "--g-bb", &g], "");
+    assert!(fails_cleanly(&["solve", "--f-bb", &f, "--g-bb", &f], "").contains("common factor"));
+    fails_cleanly(&["solve", "--f-bb", &f], "");
+    fails_cleanly(&["solve", "--f", "u", "--f-bb", &f, "--g", "v"], "");
+}
+
+/// Clusters carry a machine-readable reason beside the English text, and a
+/// NaN or non-positive `eps` is an invalid option.
+#[test]
+fn solve_json_reasons_and_options() {
+    let v = ok_json(&["solve", "--f", "u^2 + v^2 - 1/4", "--g", "u*v - 1/8", "--json"], "");
+    let c = &v["clusters"][0];
+    assert_eq!(c["reason"], "multiple_or_close", "{v}");
+    assert!(c["reason_text"].as_str().unwrap().contains("Krawczyk"), "{v}");
+    assert_eq!(v["roots"].as_array().unwrap().len(), 0);
+    for eps in ["nan", "0", "-1", "inf"] {
+        let err = fails_cleanly(&["solve", "--f", "u - v", "--g", "u + v - 1/2", "--eps", eps], "");
+        assert!(err.contains("invalid option"), "{eps}: {err}");
+    }
+}
+
+#[test]
+fn help_has_no_escaped_brackets() {
+    for cmd in ["ray", "solve", "bernstein", "tables"] {
+        let out = run(&[cmd, "--help"]);
+        assert_eq!(out.status.code(), Some(0));
+        let text = String::from_utf8(out.stdout).unwrap();
+        assert!(!text.contains("\\["), "{cmd}: {text}");
+        assert!(!text.contains('`'), "{cmd}: {text}");
+    }
+}
