@@ -61,6 +61,7 @@ pub mod solve;
 
 #[cfg(any(feature = "cli", feature = "internals"))]
 pub(crate) mod repro;
+#[cfg(any(test, feature = "internals"))]
 pub(crate) mod rng;
 #[cfg(feature = "serde")]
 mod serde_util;
@@ -76,6 +77,11 @@ pub use error::{Error, Result};
 pub use poly::{parse_polynomial, Polynomial, TensorBezier, TriBezier, UniBezier};
 pub use scalar::{Scalar, Sign};
 pub use solve::{solve, solve_bb, Domain, Method, Solution, SolveOptions};
+
+// The README's Rust examples run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
 
 /// The crates whose types appear in rootclip's signatures, re-exported so
 /// that a user's versions always match.

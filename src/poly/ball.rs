@@ -95,6 +95,7 @@ pub struct Reduced {
 }
 
 impl TriBall {
+    #[cfg_attr(not(feature = "internals"), allow(dead_code))] // Used by tests and dev tools.
     /// The ball with midpoints `mid` (storage order) and radius `rad`. Errors on
     /// the wrong count, a non-finite midpoint or a negative or NaN radius.
     pub fn new(degree: usize, mid: &[f64], rad: f64) -> Result<Self> {
@@ -128,6 +129,7 @@ impl TriBall {
         }
     }
 
+    #[cfg_attr(not(feature = "internals"), allow(dead_code))] // Used by tests and dev tools.
     /// The float polynomial `p` itself (radius 0).
     pub fn from_points(p: &TriBezier<f64>) -> Self {
         Self::new_raw(p.degree(), p.coeffs().iter().copied().collect(), 0.0)
@@ -216,6 +218,7 @@ impl TriBall {
         }
     }
 
+    #[cfg_attr(not(feature = "internals"), allow(dead_code))] // Used by tests and dev tools.
     /// The coefficients as intervals (for interoperation and tests).
     pub fn to_intervals(&self) -> TriBezier<Interval> {
         TriBezier::from_fn(self.degree, |i, j, _| {
@@ -297,6 +300,7 @@ impl TriBall {
         }
     }
 
+    #[cfg_attr(not(feature = "internals"), allow(dead_code))] // Used by tests and dev tools.
     /// The polynomial on the sub-triangle with vertices `verts` (`(s, t)` in
     /// this triangle's Cartesian coordinates, barycentric `(s, t, 1 − s − t)`):
     /// coefficient `g_ijk` is the blossom `f[P1^i, P2^j, P3^k]`, computed by
@@ -656,6 +660,7 @@ impl TriBallDD {
         }
     }
 
+    #[cfg_attr(not(feature = "internals"), allow(dead_code))] // Used by tests and dev tools.
     /// The polynomial on the sub-triangle with vertices `verts`, as
     /// [`TriBall::subdivide`], computed in compensated arithmetic and rounded
     /// to a float ball.

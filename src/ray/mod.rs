@@ -51,6 +51,7 @@ mod boxes;
 mod bspline;
 mod hit;
 mod patch;
+#[cfg(feature = "internals")]
 pub(crate) mod sample;
 mod settle;
 mod spec;

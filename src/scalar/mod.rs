@@ -414,6 +414,7 @@ fn small_rational_to_interval(q: &BigRational) -> Option<Interval> {
     })
 }
 
+#[cfg_attr(not(feature = "internals"), allow(dead_code))] // Used by tests and dev tools.
 /// `true` if the interval `x` contains the rational `q` (exact comparison).
 pub(crate) fn interval_contains_rational(x: Interval, q: &BigRational) -> bool {
     if x.is_empty() {

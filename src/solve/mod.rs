@@ -1351,6 +1351,7 @@ fn locate(x: IBox, domain: Domain) -> Place {
     }
 }
 
+#[cfg_attr(not(feature = "internals"), allow(dead_code))] // Used by tests and dev tools.
 /// The same clipping iteration in plain `f64`, without any proof: returns the
 /// centres of the final tri-boxes (on the unit triangle). For measuring the
 /// cost of rigor and as a fast heuristic; never a certificate.
