@@ -38,7 +38,7 @@ pub(super) struct RayArgs {
     /// Any one certified hit (shadow rays): the search stops at the first.
     #[arg(long)]
     any: bool,
-    /// Only hits with t >= T_MIN (default 0; may be negative: the line behind the origin).
+    /// Only hits with t >= T_MIN (may be negative: the line behind the origin).
     #[arg(long, allow_negative_numbers = true, default_value_t = 0.0)]
     t_min: f64,
     /// Only hits with t <= T_MAX (default: no limit).
