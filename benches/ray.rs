@@ -1,6 +1,6 @@
 //! Certified ray queries against seed 000's Example 1 bicubic patch
 //! (tests/data/seed000_example1.json), per batch of 256 fixed rays
-//! ([`aimed_rays`]: about half hit, some twice), one thread:
+//! ([`aimed_rays`]: about three quarters hit, some twice), one thread:
 //!
 //! * `ray/rect-all`, `ray/rect-nearest`, `ray/rect-any`: the default
 //!   rectangle route with each query;
@@ -10,10 +10,10 @@
 //! * `ray/triangles-all`: the same patch as two degree-6 triangles (hybrid
 //!   clipping), the route the rectangle one is measured against;
 //! * `ray/newton`: plain Newton–Raphson from the patch centre on the same
-//!   rays (no proof; it misses hits — `examples/ray_bench` counts them).
+//!   rays (no proof; it misses hits — `dev`'s `ray_bench` counts them).
 //!
 //! Divide the reported time by 256 for µs per ray. Whole-process batch
-//! timings (10,000 rays, rayon) are in `examples/ray_bench.rs`.
+//! timings (10,000 rays, rayon): `cargo run --release -p rootclip-dev --bin ray_bench`.
 //!
 //! `cargo bench --bench ray` takes about a minute.
 

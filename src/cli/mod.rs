@@ -2,14 +2,14 @@
 //! Errors print one line on stderr and exit 2. Not part of the API.
 
 mod bernstein;
+mod input;
 mod json;
 mod ray;
 mod solve;
 mod tables;
 
-use crate::error::{Error, Result};
 use clap::{Parser, Subcommand};
-use std::io::{Read, Write};
+use std::io::Write;
 use std::process::ExitCode;
 
 #[derive(Parser)]
@@ -80,20 +80,5 @@ pub fn main() -> ExitCode {
             eprintln!("rootclip: {}", e.to_string().replace(['\n', '\r'], " "));
             ExitCode::from(2)
         }
-    }
-}
-
-/// The text of a file, or of standard input for `-`.
-fn read_input(path: &str) -> Result<String> {
-    let io = |e: std::io::Error| Error::Io {
-        path: path.to_string(),
-        message: e.to_string(),
-    };
-    if path == "-" {
-        let mut text = String::new();
-        std::io::stdin().read_to_string(&mut text).map_err(io)?;
-        Ok(text)
-    } else {
-        std::fs::read_to_string(path).map_err(io)
     }
 }

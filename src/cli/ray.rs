@@ -7,8 +7,8 @@
 //! per ray in input order; a degenerate ray has `"complete": false` and a
 //! `"degenerate"` reason with its `"degenerate_code"`.
 
+use super::input::read_input;
 use super::json::{document, RayJson};
-use super::read_input;
 use crate::error::{Error, Result};
 use crate::ray::{intersect, Hit, Patch, PatchSpec, Query, Ray, RayOptions, RayOutcome};
 use crate::solve::SquareRoute;

@@ -2,8 +2,8 @@
 //! certified (text or JSON).
 
 use super::bernstein::{parse_bb, Bb};
+use super::input::read_input;
 use super::json::{document, SolutionJson};
-use super::read_input;
 use crate::error::{Error, Result};
 use crate::poly::parse_polynomial;
 use crate::solve::{solve, solve_bb, Domain, Method, Solution, SolveOptions, SquareRoute};

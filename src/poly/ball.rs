@@ -37,8 +37,9 @@
 //! scales its input by a power of two first ([`TriBall::normalized`]), so
 //! this only happens for absurd dynamic ranges.
 
+use super::index::{tri_index, tri_len, Bary};
 use super::l2;
-use super::triangle::{tri_index, tri_len, Bary, TriBezier};
+use super::triangle::TriBezier;
 use crate::error::{Error, Result};
 use crate::scalar::{iv, MatrixCache, MatrixKey, Scalar, Sign};
 use inari::Interval;

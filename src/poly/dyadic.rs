@@ -13,7 +13,8 @@
 //! `2^E`; after the `n` steps of every blossom value the result is
 //! `G / (D 2^{nE})` exactly, returned unnormalized (no gcd).
 
-use super::triangle::{blossom_net, tri_index, tri_len, TriBezier};
+use super::index::{tri_index, tri_len};
+use super::triangle::{blossom_net, TriBezier};
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;

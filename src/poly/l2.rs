@@ -14,7 +14,7 @@
 //! coefficients `a = G_kk⁻¹ G_kn f` — the normal equations of the projection
 //! (Lu and Wang 2006, without boundary constraints; Liu et al. 2016 §2.3.2).
 
-use super::triangle::{tri_indices, tri_len};
+use super::index::{tri_indices, tri_len};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Zero};

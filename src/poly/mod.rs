@@ -17,6 +17,7 @@
 
 pub(crate) mod ball;
 pub(crate) mod dyadic;
+mod index;
 pub(crate) mod l2;
 mod monomial;
 mod parse;
@@ -24,10 +25,11 @@ pub(crate) mod tensor;
 pub(crate) mod triangle;
 mod univariate;
 
+pub use index::{tri_index, tri_indices, tri_len, Bary};
 pub use monomial::Polynomial;
 pub use parse::parse_polynomial;
 pub use tensor::{Direction, TensorBezier, TensorReduction};
-pub use triangle::{tri_index, tri_indices, tri_len, Bary, TriBezier, TriReduction};
+pub use triangle::{TriBezier, TriReduction};
 pub use univariate::{UniBezier, UniReduction};
 
 pub(crate) use ball::{Reduced, TriBall, TriBallDD};

@@ -8,9 +8,10 @@
 //! ```
 //! (the first from `u^a v^b = u^a v^b (u + v + w)^{n−a−b}`).
 
+use super::index::{tri_index, tri_indices, tri_len};
 use super::l2::{binomial, multinomial};
 use super::tensor::TensorBezier;
-use super::triangle::{tri_index, tri_indices, tri_len, TriBezier};
+use super::triangle::TriBezier;
 use crate::error::{Error, Result};
 use num_bigint::BigInt;
 use num_rational::BigRational;

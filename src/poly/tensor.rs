@@ -6,8 +6,9 @@
 //! ```
 //! Coefficients are stored row-major: `f_ij` at index `i·(n+1) + j`.
 
+use super::index::{tri_index, tri_len};
 use super::l2::{self, binomial, multinomial};
-use super::triangle::{mat_vec, max_abs_diff, tri_index, tri_len, TriBezier};
+use super::triangle::{mat_vec, max_abs_diff, TriBezier};
 use super::univariate::{deriv_coeffs, eval_coeffs, split_coeffs, UniBezier};
 use crate::error::{Error, Result};
 use crate::scalar::{MatrixKey, Scalar, Sign};

@@ -17,6 +17,7 @@
 //! sub-triangle is described by its vertices in the parent's barycentric
 //! coordinates ([`TriBezier::subdivide`]) and the solver tracks the map.
 
+use super::index::{tri_index, tri_indices, tri_len, Bary};
 use super::l2;
 use crate::error::{Error, Result};
 use crate::scalar::{
@@ -30,26 +31,6 @@ use smallvec::SmallVec;
 pub struct TriBezier<S> {
     degree: usize,
     coeffs: Vec<S>,
-}
-
-/// Number of coefficients of a triangular polynomial of degree `n`.
-pub const fn tri_len(n: usize) -> usize {
-    (n + 1) * (n + 2) / 2
-}
-
-/// Storage index of `f_ij` (with `k = n − i − j`) in degree `n`.
-#[inline]
-pub const fn tri_index(n: usize, i: usize, j: usize) -> usize {
-    // Rows j = 0, 1, … hold n + 1, n, … coefficients.
-    j * (n + 1) - j * (j.saturating_sub(1)) / 2 + i
-}
-
-/// Barycentric coordinates `(u, v, w)` of a point with respect to a triangle.
-pub type Bary<S> = [S; 3];
-
-/// The multi-indices `(i, j, k)` of degree `n` in storage order.
-pub fn tri_indices(n: usize) -> impl Iterator<Item = (usize, usize, usize)> {
-    (0..=n).flat_map(move |j| (0..=n - j).map(move |i| (i, j, n - i - j)))
 }
 
 /// The result of [`TriBezier::reduce_l2`]: an approximant of lower degree and a

@@ -1,50 +1,17 @@
 //! One Bézier patch (triangular or tensor, polynomial or rational) against a
-//! ray: the reduction to two equations, the route to the solver, and the
-//! solver's regions turned into hits.
+//! ray: the route to the solver, and the triangle route itself.
 
-use super::patch::{eval_interval, Bb, Net};
-use super::{boxes, settle, Degeneracy, Hit, HitBox, HitStatus, Query, Ray, RayHits, RayOptions, RayOutcome};
-use super::{TensorPatch, TriPatch, MAX_CLUSTERS};
+use super::boxes;
+use super::hit::{Degeneracy, Hit, RayHits, RayOutcome};
+use super::patch::{eval_interval, Bb, BezierRef, Net};
+use super::planes::{reduce, Planes};
+use super::query::{Ray, RayOptions};
+use super::regions::{finish, region_hit, sort_by_t};
 use crate::error::{Error, Result};
 use crate::poly::{TensorBezier, TriBezier};
 use crate::scalar::{interval, point};
-use crate::solve::settle::Settled;
-use crate::solve::{solve_square, solve_triangle, Box2, Solution, SquareRoute, UndecidedReason};
-use glam::DVec3;
+use crate::solve::{solve_square, solve_triangle, Solution, SquareRoute};
 use inari::Interval;
-
-/// A borrowed Bézier patch of either kind.
-#[derive(Clone, Copy, Debug)]
-pub(crate) enum BezierRef<'a> {
-    Tri(&'a TriPatch),
-    Tensor(&'a TensorPatch),
-}
-
-impl BezierRef<'_> {
-    /// The point and the unit normal at `(u, v)` in `f64`.
-    pub(crate) fn point_and_normal(self, u: f64, v: f64) -> (DVec3, DVec3) {
-        match self {
-            BezierRef::Tri(p) => {
-                let (su, sv) = p.partials(u, v);
-                (p.eval(u, v), su.cross(sv).normalize_or_zero())
-            }
-            BezierRef::Tensor(p) => {
-                let (x, su, sv) = p.frame(u, v);
-                (x, su.cross(sv).normalize_or_zero())
-            }
-        }
-    }
-
-    /// The closed box lies in the patch's closed parameter domain (the unit
-    /// square, or the triangle `u, v ≥ 0, u + v ≤ 1` with the sum rounded up).
-    fn domain_contains(self, bx: Box2) -> bool {
-        let lower = bx.u[0] >= 0.0 && bx.v[0] >= 0.0;
-        match self {
-            BezierRef::Tri(_) => lower && (point(bx.u[1]) + point(bx.v[1])).sup() <= 1.0,
-            BezierRef::Tensor(_) => lower && bx.u[1] <= 1.0 && bx.v[1] <= 1.0,
-        }
-    }
-}
 
 /// The hits of `ray` with one Bézier patch ([`super::intersect`]'s contract):
 /// a tensor patch on a box route first, retried through the triangles when
@@ -95,40 +62,6 @@ pub(crate) fn intersect_bezier(b: BezierRef, ray: &Ray, opts: &RayOptions) -> Re
     Ok(finish(&mut hits, sol.complete, sol.clusters.len(), opts.query))
 }
 
-/// The outcome of a solve's hits: unresolved if the solve was incomplete or
-/// ended in too many undecided regions, else the hits the query asks for.
-pub(super) fn finish(hits: &mut Vec<Hit>, complete: bool, clusters: usize, query: Query) -> RayOutcome {
-    let hits_taken = std::mem::take(hits);
-    if !complete || clusters > MAX_CLUSTERS {
-        return RayOutcome::Degenerate(Degeneracy::Unresolved(RayHits {
-            complete,
-            hits: hits_taken,
-        }));
-    }
-    let mut hits = hits_taken;
-    select(&mut hits, query);
-    RayOutcome::Hits(RayHits { complete: true, hits })
-}
-
-/// Keeps the hits a query asks for (the list is sorted by `t`).
-pub(super) fn select(hits: &mut Vec<Hit>, query: Query) {
-    match query {
-        Query::All => {}
-        Query::Nearest => {
-            let all = RayHits {
-                complete: true,
-                hits: std::mem::take(hits),
-            };
-            *hits = all.nearest().into_iter().cloned().collect();
-        }
-        Query::Any => {
-            if let Some(h) = hits.iter().find(|h| h.is_certified()) {
-                *hits = vec![h.clone()];
-            }
-        }
-    }
-}
-
 enum Solved {
     Solution(Box<Solution>),
     /// An equation's coefficients all have one strict sign.
@@ -153,92 +86,6 @@ fn run(f: &[Interval], g: &[Interval], solve: impl FnOnce() -> Result<Solution>)
         // Unreachable after the screen above (kept as the solver's own word).
         Err(Error::Degenerate(_)) => Ok(Solved::ZeroEquation),
         Err(e) => Err(e),
-    }
-}
-
-/// The two planes through the ray, in interval arithmetic (also used by the
-/// B-spline knot-line merging).
-pub(crate) struct Planes {
-    pub(crate) o: [Interval; 3],
-    pub(crate) n: [[Interval; 3]; 2],
-    /// `d̃ = 2^s d` (enclosed) and `2^s`.
-    pub(crate) d: [Interval; 3],
-    pub(crate) scale: Interval,
-}
-
-impl Planes {
-    pub(crate) fn of(ray: &Ray) -> Self {
-        let d = ray.dir();
-        let big = d.abs().max_element();
-        // A power of two, clamped so that it stays finite.
-        let e = big.log2().floor().clamp(-1022.0, 1023.0) as i32;
-        let scale = point(2f64.powi(-e));
-        let dt = [point(d.x) * scale, point(d.y) * scale, point(d.z) * scale];
-        let a = d.abs();
-        let axis = if a.x <= a.y && a.x <= a.z {
-            0
-        } else if a.y <= a.z {
-            1
-        } else {
-            2
-        };
-        let mut e_a = [point(0.0); 3];
-        e_a[axis] = point(1.0);
-        let n1 = cross(e_a, dt);
-        let n2 = cross(dt, n1);
-        Self {
-            o: ray.origin().to_array().map(point),
-            n: [n1, n2],
-            d: dt,
-            scale,
-        }
-    }
-
-    /// `t = (S − o)·d / |d|² = 2^s (S − o)·d̃ / |d̃|²`.
-    pub(crate) fn t_of(&self, s: [Interval; 3]) -> Interval {
-        let num = (0..3).fold(point(0.0), |acc, c| acc + (s[c] - self.o[c]) * self.d[c]);
-        let den = (0..3).fold(point(0.0), |acc, c| acc + self.d[c].sqr());
-        self.scale * num / den
-    }
-}
-
-fn cross(a: [Interval; 3], b: [Interval; 3]) -> [Interval; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-/// `f_k` coefficients `n_k·(wP − w o)` in storage order, for `k = 1, 2`.
-fn reduce<P: HasCoeffs>(net: &Net<P>, planes: &Planes) -> [Vec<Interval>; 2] {
-    let cols: [&[Interval]; 4] = std::array::from_fn(|c| net.c[c].coeff_slice());
-    let len = cols[3].len();
-    [0, 1].map(|k| {
-        let n = planes.n[k];
-        (0..len)
-            .map(|i| {
-                (0..3).fold(point(0.0), |acc, c| {
-                    acc + n[c] * (cols[c][i] - cols[3][i] * planes.o[c])
-                })
-            })
-            .collect()
-    })
-}
-
-trait HasCoeffs {
-    fn coeff_slice(&self) -> &[Interval];
-}
-
-impl HasCoeffs for TriBezier<Interval> {
-    fn coeff_slice(&self) -> &[Interval] {
-        self.coeffs()
-    }
-}
-
-impl HasCoeffs for TensorBezier<Interval> {
-    fn coeff_slice(&self) -> &[Interval] {
-        self.coeffs()
     }
 }
 
@@ -267,11 +114,6 @@ fn collect_hits<P: Bb<Interval>>(
     hits
 }
 
-/// Sorts hits by `t` (midpoint), then `u`, `v`.
-pub(super) fn sort_by_t(hits: &mut [Hit]) {
-    hits.sort_by(|a, b| a.t.total_cmp(&b.t).then(a.u.total_cmp(&b.u)).then(a.v.total_cmp(&b.v)));
-}
-
 /// Pieces per side of the box over which [`t_over`] evaluates.
 const T_PIECES: f64 = 64.0;
 
@@ -297,56 +139,4 @@ fn t_over<P: Bb<Interval>>(net: &Net<P>, planes: &Planes, uu: Interval, vv: Inte
         }
     }
     t
-}
-
-/// The hit of a solver region — a certified root (`cluster = None`) or an
-/// undecided cluster — with its `t` enclosure; `None` if `t` is provably
-/// outside `range`. A root is certified only if it is also proven to lie in
-/// the patch's closed domain (else [`UndecidedReason::Boundary`]) and its `t`
-/// in the range (else [`UndecidedReason::RangeEnd`]): by the boxes, or, where
-/// rounding leaves either in doubt, in exact arithmetic (`settle.rs`), which
-/// may also prove a miss (`None`).
-pub(super) fn region_hit(
-    b: BezierRef,
-    ray: &Ray,
-    bx: Box2,
-    cluster: Option<UndecidedReason>,
-    t: [f64; 2],
-    range: [f64; 2],
-) -> Option<Hit> {
-    let [lo, hi] = range;
-    if t[1] < lo || t[0] > hi {
-        return None;
-    }
-    let mut inside = b.domain_contains(bx);
-    let finite = t[0].is_finite() && t[1].is_finite();
-    let (mut above, mut below) = (t[0] >= lo && finite, t[1] <= hi && finite);
-    let mut t = t;
-    if cluster.is_none() && !(inside && above && below) {
-        match settle::settle(b, ray, bx, range, !below) {
-            Settled::Inside => {
-                (inside, above, below) = (true, true, true);
-                t = [t[0].max(lo), t[1].min(hi)];
-            }
-            Settled::Outside => return None,
-            Settled::Undecided => {}
-        }
-    }
-    let status = match cluster {
-        Some(reason) => HitStatus::Undecided(reason),
-        None if !inside => HitStatus::Undecided(UndecidedReason::Boundary),
-        None if !(above && below) => HitStatus::Undecided(UndecidedReason::RangeEnd),
-        None => HitStatus::Certified,
-    };
-    let (u, v) = (0.5 * (bx.u[0] + bx.u[1]), 0.5 * (bx.v[0] + bx.v[1]));
-    let (point, normal) = b.point_and_normal(u, v);
-    Some(Hit {
-        t: 0.5 * (t[0] + t[1]),
-        u,
-        v,
-        point,
-        normal,
-        status,
-        bx: HitBox { u: bx.u, v: bx.v, t },
-    })
 }

@@ -2,8 +2,10 @@
 //! Bézier (or fat-line, or hybrid) clipping on boxes, with the query's
 //! pruning inside the solve.
 
-use super::bezier::{finish, region_hit, sort_by_t, BezierRef};
-use super::{Degeneracy, Hit, Query, Ray, RayHits, RayOptions, RayOutcome, TensorPatch};
+use super::hit::{Degeneracy, Hit, RayHits, RayOutcome};
+use super::patch::{BezierRef, TensorPatch};
+use super::query::{Query, Ray, RayOptions};
+use super::regions::{finish, region_hit, sort_by_t};
 use crate::error::{Error, Result};
 use crate::scalar::iv::Iv;
 use crate::solve::rect::{eval_box, solve_rect_iv, RectClip, RectOptions, RectProblem};

@@ -51,6 +51,9 @@ mod boxes;
 mod bspline;
 mod hit;
 mod patch;
+mod planes;
+mod query;
+mod regions;
 #[cfg(feature = "internals")]
 pub(crate) mod sample;
 mod settle;
@@ -60,133 +63,13 @@ mod surface;
 pub use bspline::{BezierPiece, BsplineSurface};
 pub use hit::{Degeneracy, Hit, HitBox, HitStatus, RayHits, RayOutcome};
 pub use patch::{TensorPatch, TriPatch};
+pub use query::{Query, Ray, RayOptions};
 pub use spec::PatchSpec;
 pub use surface::Patch;
 
-use crate::error::{Error, Result};
-pub use crate::solve::rect::Query;
-use crate::solve::{SolveOptions, SquareRoute};
-use glam::DVec3;
+use crate::error::Result;
+use patch::BezierRef;
 use rayon::prelude::*;
-
-/// A ray `o + t·d`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize))]
-pub struct Ray {
-    origin: DVec3,
-    dir: DVec3,
-}
-
-impl Ray {
-    /// A ray from `origin` along `dir` (not normalized; `t` is measured in
-    /// units of `dir`). Errors: NaN/∞ ([`Error::NonFinite`]), zero direction
-    /// ([`Error::Degenerate`]).
-    pub fn new(origin: DVec3, dir: DVec3) -> Result<Self> {
-        if !origin.is_finite() || !dir.is_finite() {
-            return Err(Error::NonFinite(format!(
-                "ray origin {:?} / direction {:?}",
-                origin.to_array(),
-                dir.to_array()
-            )));
-        }
-        if dir == DVec3::ZERO {
-            return Err(Error::Degenerate("the ray direction is zero".into()));
-        }
-        Ok(Self { origin, dir })
-    }
-
-    /// The origin `o`.
-    pub fn origin(&self) -> DVec3 {
-        self.origin
-    }
-
-    /// The direction `d`.
-    pub fn dir(&self) -> DVec3 {
-        self.dir
-    }
-
-    /// `o + t·d` in `f64`.
-    pub fn at(&self, t: f64) -> DVec3 {
-        self.origin + t * self.dir
-    }
-}
-
-/// More undecided regions than this make a ray [`Degeneracy::Unresolved`].
-pub(crate) const MAX_CLUSTERS: usize = 16;
-
-/// Options of [`intersect`] and [`intersect_batch`].
-#[derive(Clone, Debug, PartialEq)]
-#[non_exhaustive]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(default, deny_unknown_fields)
-)]
-pub struct RayOptions {
-    /// Solver options: `eps` and `max_boxes` (per triangle or per box solve;
-    /// default 20,000 here: a transversal ray needs a few dozen, more means
-    /// a curve of hits) apply to every route, `method` and `split` to
-    /// triangles. `solve.square_route` is not used: see `route`.
-    pub solve: SolveOptions,
-    /// How tensor patches (and B-spline pieces) are solved (default
-    /// [`SquareRoute::Rect`]: Bézier clipping on boxes, the fastest; a ray
-    /// whose box solve runs out of budget is retried through the triangles).
-    pub route: SquareRoute,
-    /// All hits, the nearest, or any (shadow rays).
-    pub query: Query,
-    /// The closed range `[t_min, t_max]` of `t` whose hits are wanted
-    /// (default `[0, ∞]`: the ray; `[−∞, ∞]` is the whole line). In JSON an
-    /// infinite end is `null`.
-    #[cfg_attr(feature = "serde", serde(with = "crate::serde_util::range"))]
-    pub t_range: [f64; 2],
-}
-
-impl Default for RayOptions {
-    fn default() -> Self {
-        Self {
-            solve: SolveOptions {
-                max_boxes: 20_000,
-                ..SolveOptions::default()
-            },
-            route: SquareRoute::Rect,
-            query: Query::All,
-            t_range: [0.0, f64::INFINITY],
-        }
-    }
-}
-
-impl RayOptions {
-    /// The same options with `query`.
-    pub fn with_query(mut self, query: Query) -> Self {
-        self.query = query;
-        self
-    }
-
-    /// The same options with the `t` range `[t_min, t_max]`.
-    pub fn with_t_range(mut self, t_min: f64, t_max: f64) -> Self {
-        self.t_range = [t_min, t_max];
-        self
-    }
-
-    /// The same options with the tensor route.
-    pub fn with_route(mut self, route: SquareRoute) -> Self {
-        self.route = route;
-        self
-    }
-
-    /// Checks the options: the solver's ([`SolveOptions::validate`]) and a
-    /// `t` range that is not NaN and not empty ([`Error::InvalidOption`]).
-    pub fn validate(&self) -> Result<()> {
-        self.solve.validate()?;
-        let [lo, hi] = self.t_range;
-        if lo.is_nan() || hi.is_nan() || lo > hi || lo == f64::INFINITY || hi == f64::NEG_INFINITY {
-            return Err(Error::InvalidOption(format!(
-                "t range must be a non-empty [t_min, t_max], got [{lo}, {hi}]"
-            )));
-        }
-        Ok(())
-    }
-}
 
 /// The hits of `ray` with `patch` that `opts.query` asks for, among those
 /// with `t` in `opts.t_range`:
@@ -218,8 +101,8 @@ impl RayOptions {
 pub fn intersect(patch: &Patch, ray: &Ray, opts: &RayOptions) -> Result<RayOutcome> {
     opts.validate()?;
     match patch {
-        Patch::Triangle(p) => bezier::intersect_bezier(bezier::BezierRef::Tri(p), ray, opts),
-        Patch::Tensor(p) => bezier::intersect_bezier(bezier::BezierRef::Tensor(p), ray, opts),
+        Patch::Triangle(p) => bezier::intersect_bezier(BezierRef::Tri(p), ray, opts),
+        Patch::Tensor(p) => bezier::intersect_bezier(BezierRef::Tensor(p), ray, opts),
         Patch::Bspline(s) => bspline::intersect_bspline(s, ray, opts),
     }
 }

@@ -11,6 +11,7 @@ use crate::error::{Error, Result};
 use crate::poly::{tri_len, Direction, TensorBezier, TriBezier};
 use crate::scalar::iv::{down, up, Iv};
 use crate::scalar::{interval, point};
+use crate::solve::Box2;
 use crate::Scalar;
 use glam::DVec3;
 use inari::Interval;
@@ -412,4 +413,37 @@ fn partials_f64<P: Bb<f64>>(net: &Net<P>, u: f64, v: f64) -> (DVec3, DVec3) {
 pub(crate) fn eval_interval<P: Bb<Interval>>(net: &Net<P>, u: Interval, v: Interval) -> [Interval; 3] {
     let h: [_; 4] = std::array::from_fn(|k| net.c[k].value(u, v));
     [h[0] / h[3], h[1] / h[3], h[2] / h[3]]
+}
+
+/// A borrowed Bézier patch of either kind.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum BezierRef<'a> {
+    Tri(&'a TriPatch),
+    Tensor(&'a TensorPatch),
+}
+
+impl BezierRef<'_> {
+    /// The point and the unit normal at `(u, v)` in `f64`.
+    pub(crate) fn point_and_normal(self, u: f64, v: f64) -> (DVec3, DVec3) {
+        match self {
+            BezierRef::Tri(p) => {
+                let (su, sv) = p.partials(u, v);
+                (p.eval(u, v), su.cross(sv).normalize_or_zero())
+            }
+            BezierRef::Tensor(p) => {
+                let (x, su, sv) = p.frame(u, v);
+                (x, su.cross(sv).normalize_or_zero())
+            }
+        }
+    }
+
+    /// The closed box lies in the patch's closed parameter domain (the unit
+    /// square, or the triangle `u, v ≥ 0, u + v ≤ 1` with the sum rounded up).
+    pub(crate) fn domain_contains(self, bx: Box2) -> bool {
+        let lower = bx.u[0] >= 0.0 && bx.v[0] >= 0.0;
+        match self {
+            BezierRef::Tri(_) => lower && (point(bx.u[1]) + point(bx.v[1])).sup() <= 1.0,
+            BezierRef::Tensor(_) => lower && bx.u[1] <= 1.0 && bx.v[1] <= 1.0,
+        }
+    }
 }

@@ -1,6 +1,7 @@
 //! Reproducible ray sets for benchmarks, examples and tests.
 
-use super::{Patch, Ray};
+use super::query::Ray;
+use super::surface::Patch;
 use glam::DVec3;
 
 pub use crate::rng::Rng;

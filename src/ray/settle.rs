@@ -13,8 +13,8 @@
 //! rational coefficients; so do `h − t₀|d|²W` and `t₁|d|²W − h`, whose signs
 //! say `t ≥ t₀` and `t ≤ t₁` for the ends of a range.
 
-use super::bezier::BezierRef;
-use super::Ray;
+use super::patch::BezierRef;
+use super::query::Ray;
 use crate::solve::settle::{ExactSystem, Settled, Shape};
 use crate::solve::Box2;
 use glam::DVec3;

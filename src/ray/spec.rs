@@ -1,6 +1,8 @@
 //! [`PatchSpec`]: a patch as plain data, the shape of `PATCH.json`.
 
-use super::{BsplineSurface, Patch, TensorPatch, TriPatch};
+use super::bspline::BsplineSurface;
+use super::patch::{TensorPatch, TriPatch};
+use super::surface::Patch;
 use crate::error::Result;
 use glam::DVec3;
 

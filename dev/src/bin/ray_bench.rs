@@ -11,7 +11,7 @@
 //! queries return hits of the all-hits list; Newton's misses are counted
 //! against the certified hits.
 //!
-//! `cargo run --release --example ray_bench [N]` (default 10,000; the
+//! `cargo run --release -p rootclip-dev --bin ray_bench [N]` (default 10,000; the
 //! triangle route runs on the first N/10 rays only: it is ~25× slower).
 
 use rootclip::heuristics::newton_ray_patch;

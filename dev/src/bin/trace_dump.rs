@@ -1,7 +1,7 @@
 //! Prints, for one paper example and method, each root's tri-box diameter by
 //! level — the raw material of Tables 1–6.
 //!
-//! `cargo run --release --example trace_dump -- 2 hc`
+//! `cargo run --release -p rootclip-dev --bin trace_dump -- 2 hc`
 use rootclip::internals::repro;
 use rootclip::solve::Method;
 

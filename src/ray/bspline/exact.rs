@@ -9,7 +9,7 @@
 //! surface, computed by de Boor's algorithm in rationals on the homogeneous
 //! control points `(w x, w y, w z, w)`.
 
-use super::{BezierPiece, BsplineSurface};
+use super::surface::{BezierPiece, BsplineSurface};
 use crate::ray::settle::exact_hom;
 use num_rational::BigRational;
 use num_traits::{One, Zero};

@@ -45,10 +45,11 @@
 //! not one-to-one near the hit and no proof exists: the group's reports are
 //! all kept. A hit is never dropped; at worst each piece reports it.
 
-use super::{BezierPiece, BsplineSurface};
+use super::surface::{BezierPiece, BsplineSurface};
 use crate::poly::{Direction, TensorBezier};
-use crate::ray::bezier::Planes;
-use crate::ray::{Hit, HitBox, HitStatus, Ray};
+use crate::ray::hit::{Hit, HitBox, HitStatus};
+use crate::ray::planes::Planes;
+use crate::ray::query::Ray;
 use crate::scalar::{interval, point};
 use crate::solve::UndecidedReason;
 use inari::Interval;
