@@ -24,7 +24,7 @@
 //! anything else (empty, unbounded, huge or tiny endpoints) to inari itself.
 
 use super::cache::{local_matrix, remember_local_matrix, MatrixCache, MatrixKey};
-use super::Scalar;
+use super::kernel::Scalar;
 use inari::Interval;
 use num_rational::BigRational;
 use std::any::{Any, TypeId};
