@@ -63,16 +63,15 @@
 mod fatline;
 mod hybrid;
 
-use super::driver::VANISHING;
-use super::krawczyk::{IBox, System, Verdict};
-use super::method::smallest_singular_left;
-use super::{
-    merge_roots, overlaps, undecided_clusters, Box2, Cluster, ClusterReason, Found, Leftover, Root, Solution, Stats,
-};
 use crate::error::{Error, Result};
 use crate::poly::TensorBezier;
 use crate::scalar::interval;
 use crate::scalar::iv::Iv;
+use crate::solve::driver::VANISHING;
+use crate::solve::krawczyk::{IBox, System, Verdict};
+use crate::solve::method::smallest_singular_left;
+use crate::solve::regions::{merge_roots, overlaps, undecided_clusters, Found};
+use crate::solve::solution::{Box2, Cluster, ClusterReason, Leftover, Root, Solution, Stats};
 use fatline::{fat_line_spans, FatLineClip};
 use hybrid::hybrid_spans;
 use inari::Interval;
