@@ -503,7 +503,7 @@ fn separating_combination(f: &TriBall, g: &TriBall) -> Combination {
     let centre = [1.0 / 3.0; 3];
     let (_, a, _) = f.jet2(&centre);
     let (_, b, _) = g.jet2(&centre);
-    let Some(w) = super::method::smallest_singular_left([a[0], a[1], b[0], b[1]]) else {
+    let Some(w) = super::linalg::smallest_singular_left([a[0], a[1], b[0], b[1]]) else {
         return Combination::Open;
     };
     let norm = w[0].abs().max(w[1].abs());

@@ -15,6 +15,7 @@
 //! interval coefficients, so the verdicts hold for every polynomial system in
 //! the coefficient enclosures.
 
+use super::linalg::inverse2;
 use super::num::{Geo, GeoIv};
 use crate::poly::{Direction, TensorBezier, TriBezier};
 use crate::scalar::point;
@@ -171,7 +172,7 @@ impl<P: Bivariate> System<P> {
         let fx = self.value(xm).map(GeoIv::of);
         let j = jac.unwrap_or_else(|| self.jac.each_ref().map(|p| GeoIv::of(Self::eval(p, x))));
         let jm = self.jac_mid.each_ref().map(|p| P::mid_value(p, mid[0], mid[1]));
-        let Some(y) = inverse2(jm) else {
+        let Some(y) = inverse2(jm, 1e-14) else {
             return undecided(Some(j));
         };
         let y = y.map(GeoIv::pt);
@@ -333,7 +334,7 @@ impl<P: Bivariate> System<P> {
         for _ in 0..4 {
             let f = self.value_mid.each_ref().map(|p| P::mid_value(p, x[0], x[1]));
             let j = self.jac_mid.each_ref().map(|p| P::mid_value(p, x[0], x[1]));
-            let y = inverse2(j)?;
+            let y = inverse2(j, 1e-14)?;
             let dx = [y[0] * f[0] + y[1] * f[1], y[2] * f[0] + y[3] * f[1]];
             x = [x[0] - dx[0], x[1] - dx[1]];
             if !(x[0].is_finite() && x[1].is_finite()) {
@@ -386,15 +387,6 @@ pub fn width(x: IBox) -> f64 {
 fn inflate(x: Interval, rel: f64) -> Interval {
     let r = rel * x.wid() + 4.0 * f64::EPSILON * x.mag().max(f64::MIN_POSITIVE);
     crate::scalar::interval((x.inf() - r).next_down(), (x.sup() + r).next_up())
-}
-
-fn inverse2(m: [f64; 4]) -> Option<[f64; 4]> {
-    let det = m[0] * m[3] - m[1] * m[2];
-    let scale = (m[0].abs() + m[1].abs()) * (m[2].abs() + m[3].abs());
-    if det == 0.0 || !det.is_finite() || det.abs() < 1e-14 * scale {
-        return None;
-    }
-    Some([m[3] / det, -m[1] / det, -m[2] / det, m[0] / det])
 }
 
 #[cfg(test)]

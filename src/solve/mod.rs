@@ -21,6 +21,7 @@ pub mod degenerate;
 pub mod driver;
 pub mod fatcurve;
 pub mod krawczyk;
+pub(crate) mod linalg;
 pub mod method;
 pub mod num;
 pub mod rect;

@@ -27,6 +27,7 @@
 //! reduction it repeats in rationals with exact plane normals.
 
 use super::degenerate::gcd;
+use super::linalg::inverse2_dyadic;
 use super::Box2;
 use crate::error::{Error, Result};
 use crate::poly::{tri_index, tri_len, Direction, TensorBezier, TriBezier};
@@ -443,7 +444,7 @@ impl ExactSystem {
         let pt = [RI::point(mid[0].clone()), RI::point(mid[1].clone())];
         let fm = [0, 1].map(|k| eval(self.shape, &self.f[k], &pt).lo);
         let jm: [[Q; 2]; 2] = [0, 1].map(|k| [0, 1].map(|d| self.df()[k][d].enclose(&pt).lo));
-        let y = inverse(&jm, bits)?;
+        let y = inverse2_dyadic(&jm, bits)?;
         let jx: [[RI; 2]; 2] = [0, 1].map(|k| [0, 1].map(|d| self.df()[k][d].enclose(x)));
         let dx = [x[0].sub_point(&mid[0]), x[1].sub_point(&mid[1])];
         let mut out: [RI; 2] = [RI::point(Q::zero()), RI::point(Q::zero())];
@@ -473,25 +474,6 @@ fn precision_bits(width: &Q) -> Option<u64> {
     let e = width.numer().bits() as i64 - width.denom().bits() as i64;
     let bits = (64 - 2 * e).max(64);
     (bits < 1 << 20).then_some(bits as u64)
-}
-
-/// `Y ≈ J⁻¹`: the exact inverse of the midpoint Jacobian rounded to
-/// multiples of `2^-bits` relative to its size (any `Y` keeps Krawczyk
-/// rigorous; a sharp one makes `I − Y J(X)` of the order of the box, so the
-/// contraction is quadratic, and on a linear system it is one step).
-fn inverse(j: &[[Q; 2]; 2], bits: u64) -> Option<[[Q; 2]; 2]> {
-    let det = &j[0][0] * &j[1][1] - &j[0][1] * &j[1][0];
-    if det.is_zero() {
-        return None;
-    }
-    let inv = [[&j[1][1] / &det, -&j[0][1] / &det], [-&j[1][0] / &det, &j[0][0] / &det]];
-    // Round relative to the largest entry, so that the denominators stay
-    // bounded whatever the scale.
-    let big = inv.iter().flatten().map(|x| x.abs()).max().expect("four entries");
-    let e = big.numer().bits() as i64 - big.denom().bits() as i64;
-    let shift = (bits as i64 - e).clamp(0, 1 << 20) as u64;
-    let s = Q::from_integer(BigInt::one() << shift);
-    Some(inv.map(|r| r.map(|x| (x * &s).round() / &s)))
 }
 
 /// A closed interval with exact rational endpoints.

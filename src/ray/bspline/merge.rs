@@ -49,6 +49,7 @@ use super::{BezierPiece, BsplineSurface};
 use crate::poly::{Direction, TensorBezier};
 use crate::ray::{Hit, HitBox, Planes, Ray};
 use crate::scalar::{interval, point};
+use crate::solve::linalg::inverse2;
 use inari::Interval;
 use std::collections::BTreeMap;
 
@@ -237,7 +238,7 @@ fn krawczyk_step(surface: &BsplineSurface, planes: &Planes, x: IBox) -> Verdict 
     let j = jacobians.iter().fold([Interval::EMPTY; 4], |acc, jk| {
         std::array::from_fn(|i| acc[i].convex_hull(jk[i]))
     });
-    let Some(y) = inverse2(j.map(|c| c.mid())) else {
+    let Some(y) = inverse2(j.map(|c| c.mid()), 1e-14) else {
         return Verdict::Undecided(x);
     };
     let y = y.map(point);
@@ -300,13 +301,4 @@ fn width(x: IBox) -> f64 {
 fn inflate(x: Interval, rel: f64) -> Interval {
     let r = rel * x.wid() + 4.0 * f64::EPSILON * x.mag().max(f64::MIN_POSITIVE);
     interval((x.inf() - r).next_down(), (x.sup() + r).next_up())
-}
-
-fn inverse2(m: [f64; 4]) -> Option<[f64; 4]> {
-    let det = m[0] * m[3] - m[1] * m[2];
-    let scale = (m[0].abs() + m[1].abs()) * (m[2].abs() + m[3].abs());
-    if det == 0.0 || !det.is_finite() || det.abs() < 1e-14 * scale {
-        return None;
-    }
-    Some([m[3] / det, -m[1] / det, -m[2] / det, m[0] / det])
 }

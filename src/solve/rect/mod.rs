@@ -69,7 +69,7 @@ use crate::scalar::interval;
 use crate::scalar::iv::Iv;
 use crate::solve::driver::VANISHING;
 use crate::solve::krawczyk::{IBox, System, Verdict};
-use crate::solve::method::smallest_singular_left;
+use crate::solve::linalg::{inverse2, smallest_singular_left};
 use crate::solve::regions::{merge_roots, overlaps, undecided_clusters, Found};
 use crate::solve::solution::{Box2, Cluster, ClusterReason, Leftover, Root, Solution, Stats};
 use fatline::{fat_line_spans, FatLineClip};
@@ -1093,10 +1093,9 @@ fn preconditioned_spans(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
         return Some([(0.0, 1.0); 2]);
     }
     let mut combos: Vec<[f64; 2]> = Vec::with_capacity(3);
-    let det = j[0] * j[3] - j[1] * j[2];
-    if det != 0.0 && det.is_finite() {
-        combos.push([j[3] / det, -j[1] / det]);
-        combos.push([-j[2] / det, j[0] / det]);
+    if let Some(y) = inverse2(j, 0.0) {
+        combos.push([y[0], y[1]]);
+        combos.push([y[2], y[3]]);
     }
     if let Some(v) = smallest_singular_left(j) {
         combos.push(v);
@@ -1208,13 +1207,10 @@ fn local_krawczyk(c: &[Iv], sh: Shape) -> Local {
     if j.iter().any(|x| !x.is_finite()) {
         return Local::Undecided;
     }
-    let jm = j.map(Iv::mid);
-    let det = jm[0] * jm[3] - jm[1] * jm[2];
-    let scale = (jm[0].abs() + jm[1].abs()) * (jm[2].abs() + jm[3].abs());
-    if det == 0.0 || !det.is_finite() || det.abs() < 1e-12 * scale {
+    let Some(y) = inverse2(j.map(Iv::mid), 1e-12) else {
         return Local::Undecided;
-    }
-    let y = [jm[3] / det, -jm[1] / det, -jm[2] / det, jm[0] / det].map(Iv::point);
+    };
+    let y = y.map(Iv::point);
     // M = I − Y J
     let one = Iv::point(1.0);
     let mm = [
