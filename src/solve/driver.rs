@@ -8,6 +8,7 @@
 //! every coefficient of `f` or of `g` on it has one strict sign.
 
 use super::fatcurve::ClipBounds;
+use super::krawczyk::Verdict;
 use super::method::{clip_bounds, clip_bounds_swapped, Method};
 use super::num::Geo;
 use super::tribox::TriBox;
@@ -64,16 +65,10 @@ pub enum SplitRule {
     PaperLiteral,
 }
 
-/// What a probe (Krawczyk on a stalled tri-box) proved.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Probe {
-    /// Exactly one root in (a box containing) the tri-box: stop refining it.
-    Unique,
-    /// No root in the tri-box: discard it.
-    NoRoot,
-    /// Nothing proven.
-    Undecided,
-}
+/// What a probe (Krawczyk on a stalled tri-box) proved: a unique root in (a
+/// box containing) the tri-box stops refining it, no root discards it. The
+/// caller keeps the certificate; the driver needs only the verdict.
+pub type Probe = Verdict<()>;
 
 /// Below this diameter a stalled, undecided tri-box is not split further:
 /// it sits at the precision floor of a multiple or near-multiple root, where
@@ -794,14 +789,14 @@ fn step<G: Geo>(cx: &mut Ctx, mut item: Leaf, stack: &mut Vec<Leaf>, probe: &mut
     let verdict = if probe_here && !throttled {
         cx.out.counters.probes += 1;
         let v = probe(&tb);
-        cx.out.futile_probes = if v == Probe::Undecided {
+        cx.out.futile_probes = if v == Probe::Undecided(()) {
             cx.out.futile_probes + 1
         } else {
             0
         };
         v
     } else {
-        Probe::Undecided
+        Probe::Undecided(())
     };
     let next = Leaf {
         tb,
@@ -815,8 +810,8 @@ fn step<G: Geo>(cx: &mut Ctx, mut item: Leaf, stack: &mut Vec<Leaf>, probe: &mut
             cx.out.counters.probe_exclusions += 1;
             return;
         }
-        Probe::Unique => true,
-        Probe::Undecided if !progressed && probe_here && G::RIGOROUS => {
+        Probe::Unique(()) => true,
+        Probe::Undecided(()) if !progressed && probe_here && G::RIGOROUS => {
             match separating_combination(&next.fa, &next.fb) {
                 Combination::NoRoot => {
                     cx.out.counters.sign_exclusions += 1;
@@ -831,7 +826,7 @@ fn step<G: Geo>(cx: &mut Ctx, mut item: Leaf, stack: &mut Vec<Leaf>, probe: &mut
                 }
             }
         }
-        Probe::Undecided => false,
+        Probe::Undecided(()) => false,
     };
     if stop_here || progressed {
         let leaf = at_level(&mut cx.out, next, level, new_diam);

@@ -364,15 +364,15 @@ fn certify_region(
     *budget -= 1;
     stats.krawczyk_calls += 1;
     match sys.certify(bx) {
-        settle::Certificate::Unique(k) => {
+        Verdict::Unique(k) => {
             found.push(k);
             true
         }
-        settle::Certificate::NoRoot => {
+        Verdict::NoRoot => {
             stats.krawczyk_exclusions += 1;
             true
         }
-        settle::Certificate::Undecided if depth > 0 => {
+        Verdict::Undecided(()) if depth > 0 => {
             let (a, b) = if bx.u[1] - bx.u[0] >= bx.v[1] - bx.v[0] {
                 let m = 0.5 * (bx.u[0] + bx.u[1]);
                 (Box2 { u: [bx.u[0], m], ..bx }, Box2 { u: [m, bx.u[1]], ..bx })
@@ -383,7 +383,7 @@ fn certify_region(
             certify_region(sys, a, depth - 1, budget, found, stats)
                 && certify_region(sys, b, depth - 1, budget, found, stats)
         }
-        settle::Certificate::Undecided => false,
+        Verdict::Undecided(()) => false,
     }
 }
 
@@ -551,10 +551,10 @@ fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &Solv
             match local.certify_within(x, PROBE_ROUNDS) {
                 Verdict::Unique(k) => {
                     proven.push((x, k));
-                    Probe::Unique
+                    Verdict::Unique(())
                 }
-                Verdict::NoRoot => Probe::NoRoot,
-                Verdict::Undecided(_) => Probe::Undecided,
+                Verdict::NoRoot => Verdict::NoRoot,
+                Verdict::Undecided(_) => Verdict::Undecided(()),
             }
         };
         let ball = |p: &TriBezier<Interval>| TriBall::enclose(p).unwrap_or_else(|_| TriBall::unbounded(p.degree()));
@@ -770,7 +770,7 @@ pub fn solve_triangle_f64(f: &TriBezier<f64>, g: &TriBezier<f64>, opts: &SolveOp
         &TriBall::from_points(&g),
         Exact::None,
         &limits,
-        &mut |_| Probe::Undecided,
+        &mut |_| Probe::Undecided(()),
     );
     run.leaves.iter().map(|l| l.tb.point_at([1.0 / 3.0; 3])).collect()
 }

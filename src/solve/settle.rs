@@ -27,8 +27,9 @@
 //! reduction it repeats in rationals with exact plane normals.
 
 use super::degenerate::gcd;
+use super::krawczyk::Verdict;
 use super::linalg::inverse2_dyadic;
-use super::Box2;
+use super::solution::Box2;
 use crate::error::{Error, Result};
 use crate::poly::{tri_index, tri_len, Direction, TensorBezier, TriBezier};
 use num_bigint::BigInt;
@@ -70,17 +71,6 @@ pub enum Edge {
     V1,
     /// `u + v = 1` (triangle).
     Hypotenuse,
-}
-
-/// What exact Krawczyk proves about a box ([`ExactSystem::certify`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Certificate {
-    /// Exactly one root, simple, and it lies in this box.
-    Unique(Box2),
-    /// No root.
-    NoRoot,
-    /// Nothing proven.
-    Undecided,
 }
 
 /// The domain and basis of an [`ExactSystem`].
@@ -387,21 +377,21 @@ impl ExactSystem {
 
     /// Krawczyk in exact arithmetic on the closed box `bx` widened by a
     /// tenth of its size on each side (a root on its edge should not defeat
-    /// the test): [`Certificate::Unique`] with a box holding the only root of
+    /// the test): [`Verdict::Unique`] with a box holding the only root of
     /// the widened box, a simple one, once `K(X) ⊂ int X` for a contraction
     /// `X` of it (every root of the widened box stays in each `X`, so the
-    /// uniqueness extends to it); [`Certificate::NoRoot`] when `K(X) ∩ X` is
+    /// uniqueness extends to it); [`Verdict::NoRoot`] when `K(X) ∩ X` is
     /// empty. Used on the small undecided regions that rounding left: with
     /// exact coefficients the noise that defeated the interval Krawczyk test
     /// is gone (two roots 1e-8 apart, say).
-    pub fn certify(&self, bx: Box2) -> Certificate {
+    pub fn certify(&self, bx: Box2) -> Verdict<Box2, ()> {
         let q = |x: f64| Q::from_float(x);
         let widen = |b: [f64; 2]| {
             let r = (b[1] - b[0]) / 10.0;
             Some((q(b[0] - r)?, q(b[1] + r)?))
         };
         let (Some((u0, u1)), Some((v0, v1))) = (widen(bx.u), widen(bx.v)) else {
-            return Certificate::Undecided;
+            return Verdict::Undecided(());
         };
         let mut x = [RI::new(u0, u1), RI::new(v0, v1)];
         // K(X) ⊂ int X comes within a few steps when it comes at all; a step
@@ -409,7 +399,7 @@ impl ExactSystem {
         // sizes double with every step that does).
         for _ in 0..CERTIFY_STEPS {
             let Some(k) = self.krawczyk(&x) else {
-                return Certificate::Undecided;
+                return Verdict::Undecided(());
             };
             let inside = (0..2).all(|d| k[d].lo > x[d].lo && k[d].hi < x[d].hi);
             if inside {
@@ -418,22 +408,22 @@ impl ExactSystem {
                     // Outward by an ulp: `to_f64` rounds to nearest.
                     [lo.next_down(), hi.next_up()]
                 };
-                return Certificate::Unique(Box2 {
+                return Verdict::Unique(Box2 {
                     u: out(&k[0]),
                     v: out(&k[1]),
                 });
             }
             let (Some(a), Some(b)) = (k[0].meet(&x[0]), k[1].meet(&x[1])) else {
-                return Certificate::NoRoot;
+                return Verdict::NoRoot;
             };
             let before = x[0].width().max(x[1].width());
             let after = a.width().max(b.width());
             if after * Q::from_integer(2.into()) > before {
-                return Certificate::Undecided;
+                return Verdict::Undecided(());
             }
             x = [a, b];
         }
-        Certificate::Undecided
+        Verdict::Undecided(())
     }
 
     /// `K(X) = x̃ − Y F(x̃) + (I − Y J(X))(X − x̃)`, endpoints rounded outward.

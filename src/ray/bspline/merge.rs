@@ -49,6 +49,7 @@ use super::{BezierPiece, BsplineSurface};
 use crate::poly::{Direction, TensorBezier};
 use crate::ray::{Hit, HitBox, Planes, Ray};
 use crate::scalar::{interval, point};
+use crate::solve::krawczyk::{IBox, Verdict};
 use crate::solve::linalg::inverse2;
 use inari::Interval;
 use std::collections::BTreeMap;
@@ -152,8 +153,6 @@ fn merged_hit(surface: &BsplineSurface, planes: &Planes, k: IBox) -> Option<Hit>
     })
 }
 
-type IBox = [Interval; 2];
-
 /// The pieces whose extended rectangles meet the box `x` (the outer pieces
 /// extend to infinity, so every point of the plane belongs to a piece).
 fn meeting(surface: &BsplineSurface, x: IBox) -> impl Iterator<Item = &BezierPiece> {
@@ -200,13 +199,6 @@ impl PieceSystem {
         ];
         Some(Self { f: [f0, f1], jac })
     }
-}
-
-/// What a Krawczyk step on `G` proves about a box.
-enum Verdict {
-    Unique(IBox),
-    NoRoot,
-    Undecided(IBox),
 }
 
 /// One step of the operator `K` of the module docs: `G(x̃)` enclosed by the

@@ -510,7 +510,7 @@ impl Runner {
         if w[0].max(w[1]) <= KRAWCZYK_BELOW {
             self.stats.krawczyk_calls += 1;
             match local_krawczyk(&node.c, sh) {
-                Local::Unique(k) => {
+                Verdict::Unique(k) => {
                     let bx = [0, 1].map(|a| {
                         let [lo, hi] = node.bx[a];
                         let x = Iv::lerp_range(lo, hi, k[a].lo, k[a].hi);
@@ -539,11 +539,11 @@ impl Runner {
                         return Step::Continue(node);
                     }
                 }
-                Local::NoRoot => {
+                Verdict::NoRoot => {
                     self.stats.run.probe_exclusions += 1;
                     return Step::Done;
                 }
-                Local::Undecided => {}
+                Verdict::Undecided(()) => {}
             }
         }
         if w[0].max(w[1]) < self.opts.eps {
@@ -1121,12 +1121,6 @@ fn preconditioned_spans(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
     Some(spans)
 }
 
-enum Local {
-    Unique([Iv; 2]),
-    NoRoot,
-    Undecided,
-}
-
 /// The polynomial's value at the local point `(s, t)` (floats in `[0, 1]`).
 fn eval_local(p: &[Iv], sh: Shape, s: f64, t: f64) -> Iv {
     let mut col = [Iv::point(0.0); STACK];
@@ -1196,19 +1190,19 @@ fn jacobian_row(p: &[Iv], sh: Shape) -> [Iv; 2] {
 
 /// Krawczyk on `X = [0, 1]²` in the box's local coordinates (module docs,
 /// step 3), then contraction.
-fn local_krawczyk(c: &[Iv], sh: Shape) -> Local {
+fn local_krawczyk(c: &[Iv], sh: Shape) -> Verdict<[Iv; 2], ()> {
     if sh.m >= STACK || sh.n >= STACK {
-        return Local::Undecided;
+        return Verdict::Undecided(());
     }
     let (f, g) = (&c[..sh.len], &c[sh.len..2 * sh.len]);
     let [a, b] = jacobian_row(f, sh);
     let [cc, d] = jacobian_row(g, sh);
     let j = [a, b, cc, d];
     if j.iter().any(|x| !x.is_finite()) {
-        return Local::Undecided;
+        return Verdict::Undecided(());
     }
     let Some(y) = inverse2(j.map(Iv::mid), 1e-12) else {
-        return Local::Undecided;
+        return Verdict::Undecided(());
     };
     let y = y.map(Iv::point);
     // M = I − Y J
@@ -1234,13 +1228,13 @@ fn local_krawczyk(c: &[Iv], sh: Shape) -> Local {
     };
     let unit = [Iv::new(0.0, 1.0); 2];
     let Some(k) = kraw(unit) else {
-        return Local::Undecided;
+        return Verdict::Undecided(());
     };
     if !(k[0].inside_open(0.0, 1.0) && k[1].inside_open(0.0, 1.0)) {
         if k[0].meet(unit[0]).is_none() || k[1].meet(unit[1]).is_none() {
-            return Local::NoRoot;
+            return Verdict::NoRoot;
         }
-        return Local::Undecided;
+        return Verdict::Undecided(());
     }
     // Contract. Every root in X lies in K(X), and J over the whole box stays
     // valid for any X inside it. First Newton in f64 (with Y fixed: the chord
@@ -1280,7 +1274,7 @@ fn local_krawczyk(c: &[Iv], sh: Shape) -> Local {
         if let Some(kk) = kraw(tiny) {
             if kk[0].inside_open(tiny[0].lo, tiny[0].hi) && kk[1].inside_open(tiny[1].lo, tiny[1].hi) {
                 // K(tiny) ⊂ int tiny: the root (the only one in the box) is in it.
-                return Local::Unique(kk);
+                return Verdict::Unique(kk);
             }
         }
     }
@@ -1295,5 +1289,5 @@ fn local_krawczyk(c: &[Iv], sh: Shape) -> Local {
             break;
         }
     }
-    Local::Unique(x)
+    Verdict::Unique(x)
 }

@@ -99,17 +99,25 @@ pub struct System<P: Bivariate = TriBezier<Interval>> {
     value_mid: [P::Mid; 2],
 }
 
-/// What a Krawczyk step proves about a box.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Verdict {
+/// What a Krawczyk test proves about a box `X`: the one verdict of every
+/// variant (module docs) and of the driver's probes.
+///
+/// `B` is the box type a variant speaks in ([`IBox`] here, the local
+/// variant's [`Iv`](crate::scalar::iv::Iv) pair, the exact variant's
+/// [`Box2`](crate::solve::Box2)), `U` what an undecided test still knows:
+/// `B` where the variant computes `K(X) ∩ X`, `()` where it keeps nothing
+/// (the exact and local variants; the driver's probes, `Verdict<()>`, which
+/// keep no box at all).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Verdict<B = IBox, U = B> {
     /// Exactly one root in the box, simple, and it lies in the given
     /// sub-box `K(X)`.
-    Unique(IBox),
+    Unique(B),
     /// No root in the box.
     NoRoot,
     /// Neither could be proven; the root set within the box lies in the given
     /// enclosure `K(X) ∩ X`.
-    Undecided(IBox),
+    Undecided(U),
 }
 
 impl<P: Bivariate> System<P> {
