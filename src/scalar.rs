@@ -39,6 +39,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 mod endpoints;
 pub(crate) mod iv;
+pub(crate) mod rational_interval;
 pub(crate) use endpoints::{
     cached_endpoints, endpoint_net, endpoint_of, endpoints_of, from_endpoint, from_endpoints, store_endpoints, Arith,
     Endpoints,

@@ -15,6 +15,8 @@
 //! interval coefficients, so the verdicts hold for every polynomial system in
 //! the coefficient enclosures.
 
+pub(crate) mod exact;
+
 use super::linalg::inverse2;
 use super::num::{Geo, GeoIv};
 use crate::poly::{Direction, TensorBezier, TriBezier};
