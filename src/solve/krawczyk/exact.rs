@@ -13,8 +13,8 @@
 //! to remove (two roots 1e-8 apart, a root a subnormal away from an edge).
 //! Its systems implement [`RationalSystem`] instead.
 
+use super::verdict::Verdict;
 use crate::scalar::rational_interval::RI;
-use crate::solve::krawczyk::Verdict;
 use crate::solve::linalg::inverse2_dyadic;
 use crate::solve::solution::Box2;
 use num_rational::BigRational;

@@ -68,6 +68,7 @@ use crate::poly::TensorBezier;
 use crate::scalar::interval;
 use crate::scalar::iv::Iv;
 use crate::solve::driver::VANISHING;
+use crate::solve::krawczyk::local::{self, LocalSystem};
 use crate::solve::krawczyk::{IBox, System, Verdict};
 use crate::solve::linalg::{inverse2, smallest_singular_left};
 use crate::solve::regions::{merge_roots, overlaps, undecided_clusters, Found};
@@ -1189,7 +1190,7 @@ fn jacobian_row(p: &[Iv], sh: Shape) -> [Iv; 2] {
 }
 
 /// Krawczyk on `X = [0, 1]²` in the box's local coordinates (module docs,
-/// step 3), then contraction.
+/// step 3), then contraction ([`local::certify_unit_box`]).
 fn local_krawczyk(c: &[Iv], sh: Shape) -> Verdict<[Iv; 2], ()> {
     if sh.m >= STACK || sh.n >= STACK {
         return Verdict::Undecided(());
@@ -1197,97 +1198,22 @@ fn local_krawczyk(c: &[Iv], sh: Shape) -> Verdict<[Iv; 2], ()> {
     let (f, g) = (&c[..sh.len], &c[sh.len..2 * sh.len]);
     let [a, b] = jacobian_row(f, sh);
     let [cc, d] = jacobian_row(g, sh);
-    let j = [a, b, cc, d];
-    if j.iter().any(|x| !x.is_finite()) {
-        return Verdict::Undecided(());
+    local::certify_unit_box(&BoxSystem { f, g, sh }, [a, b, cc, d])
+}
+
+/// The system on a box, as [`local`] evaluates it (degrees below [`STACK`]).
+struct BoxSystem<'a> {
+    f: &'a [Iv],
+    g: &'a [Iv],
+    sh: Shape,
+}
+
+impl LocalSystem for BoxSystem<'_> {
+    fn value(&self, s: f64, t: f64) -> [Iv; 2] {
+        [eval_local(self.f, self.sh, s, t), eval_local(self.g, self.sh, s, t)]
     }
-    let Some(y) = inverse2(j.map(Iv::mid), 1e-12) else {
-        return Verdict::Undecided(());
-    };
-    let y = y.map(Iv::point);
-    // M = I − Y J
-    let one = Iv::point(1.0);
-    let mm = [
-        one.sub(y[0].mul(j[0]).add(y[1].mul(j[2]))),
-        Iv::point(0.0).sub(y[0].mul(j[1]).add(y[1].mul(j[3]))),
-        Iv::point(0.0).sub(y[2].mul(j[0]).add(y[3].mul(j[2]))),
-        one.sub(y[2].mul(j[1]).add(y[3].mul(j[3]))),
-    ];
-    let kraw = |x: [Iv; 2]| -> Option<[Iv; 2]> {
-        let p = [x[0].mid(), x[1].mid()];
-        let fx = eval_local(f, sh, p[0], p[1]);
-        let gx = eval_local(g, sh, p[0], p[1]);
-        let d = [x[0].sub(Iv::point(p[0])), x[1].sub(Iv::point(p[1]))];
-        let k0 = Iv::point(p[0])
-            .sub(y[0].mul(fx).add(y[1].mul(gx)))
-            .add(mm[0].mul(d[0]).add(mm[1].mul(d[1])));
-        let k1 = Iv::point(p[1])
-            .sub(y[2].mul(fx).add(y[3].mul(gx)))
-            .add(mm[2].mul(d[0]).add(mm[3].mul(d[1])));
-        (k0.is_finite() && k1.is_finite()).then_some([k0, k1])
-    };
-    let unit = [Iv::new(0.0, 1.0); 2];
-    let Some(k) = kraw(unit) else {
-        return Verdict::Undecided(());
-    };
-    if !(k[0].inside_open(0.0, 1.0) && k[1].inside_open(0.0, 1.0)) {
-        if k[0].meet(unit[0]).is_none() || k[1].meet(unit[1]).is_none() {
-            return Verdict::NoRoot;
-        }
-        return Verdict::Undecided(());
+
+    fn value_mid(&self, s: f64, t: f64) -> [f64; 2] {
+        [eval_mid(self.f, self.sh, s, t), eval_mid(self.g, self.sh, s, t)]
     }
-    // Contract. Every root in X lies in K(X), and J over the whole box stays
-    // valid for any X inside it. First Newton in f64 (with Y fixed: the chord
-    // method) from the centre of K proposes the root; then one Krawczyk step
-    // on a tiny box around it, sized from |Y F(x*)| and q = ‖I − Y J‖, proves
-    // it. If that fails, plain iteration of K.
-    let mut x = k;
-    let ym = y.map(|c| c.lo);
-    let mut p = [k[0].mid(), k[1].mid()];
-    let mut last = f64::INFINITY;
-    for _ in 0..8 {
-        let (fv, gv) = (eval_mid(f, sh, p[0], p[1]), eval_mid(g, sh, p[0], p[1]));
-        let step = [ym[0] * fv + ym[1] * gv, ym[2] * fv + ym[3] * gv];
-        p = [
-            (p[0] - step[0]).clamp(k[0].lo, k[0].hi),
-            (p[1] - step[1]).clamp(k[1].lo, k[1].hi),
-        ];
-        // Local coordinates are in [0, 1]: a step below a few ulps of 1 is
-        // rounding, and a step that stops shrinking will not improve.
-        let size = step[0].abs().max(step[1].abs());
-        if size < 1e-15 || size > 0.5 * last {
-            break;
-        }
-        last = size;
-    }
-    let q = (mm[0].lo.abs().max(mm[0].hi.abs()) + mm[1].lo.abs().max(mm[1].hi.abs()))
-        .max(mm[2].lo.abs().max(mm[2].hi.abs()) + mm[3].lo.abs().max(mm[3].hi.abs()));
-    if q < 0.75 {
-        let (fv, gv) = (eval_local(f, sh, p[0], p[1]), eval_local(g, sh, p[0], p[1]));
-        let mag = |c: Iv| c.lo.abs().max(c.hi.abs());
-        let d = [
-            ym[0].abs() * mag(fv) + ym[1].abs() * mag(gv),
-            ym[2].abs() * mag(fv) + ym[3].abs() * mag(gv),
-        ];
-        let r = d.map(|d| 4.0 * d / (1.0 - q) + 1e-16);
-        let tiny = [0, 1].map(|a| Iv::new((p[a] - r[a]).max(k[a].lo), (p[a] + r[a]).min(k[a].hi)));
-        if let Some(kk) = kraw(tiny) {
-            if kk[0].inside_open(tiny[0].lo, tiny[0].hi) && kk[1].inside_open(tiny[1].lo, tiny[1].hi) {
-                // K(tiny) ⊂ int tiny: the root (the only one in the box) is in it.
-                return Verdict::Unique(kk);
-            }
-        }
-    }
-    for _ in 0..12 {
-        let Some(k) = kraw(x) else { break };
-        let (Some(a), Some(b)) = (k[0].meet(x[0]), k[1].meet(x[1])) else {
-            break;
-        };
-        let shrunk = a.wid().max(b.wid()) < 0.5 * x[0].wid().max(x[1].wid());
-        x = [a, b];
-        if !shrunk {
-            break;
-        }
-    }
-    Verdict::Unique(x)
 }
