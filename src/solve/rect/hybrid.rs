@@ -37,7 +37,7 @@
 //! conic band transversally at a simple root.
 
 use super::fatline::{FatLineClip, Strip};
-use super::runner::{at, Shape, STACK};
+use super::net::{at, Shape, STACK};
 use crate::scalar::iv::{down, up, Iv};
 use crate::solve::linalg::{gauss, Pivoting};
 

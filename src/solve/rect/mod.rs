@@ -59,10 +59,21 @@
 //!
 //! Interval arithmetic: the hot loops use `Iv` (nearest rounding moved one
 //! float outward), certification of leaves uses inari.
+//!
+//! # Layout
+//! `runner.rs` holds the options, the entry points and the loop over boxes;
+//! `net.rs` a box and its coefficients; `proof.rs` step 3 (the operator
+//! itself is `krawczyk::local`) and the lost-sign test; `spans.rs` step 4
+//! with Bézier hulls and the clips and splits of step 5; `fatline.rs` and
+//! `hybrid.rs` the other clipping methods of step 4.
 
 mod fatline;
 mod hybrid;
+mod net;
+mod proof;
 mod runner;
+mod spans;
 
-pub(crate) use runner::{eval_box, solve_rect_iv, RectProblem};
+pub(crate) use net::eval_box;
 pub use runner::{solve_rect, Objective, Query, RectClip, RectOptions, RectSolution};
+pub(crate) use runner::{solve_rect_iv, RectProblem};

@@ -1,17 +1,18 @@
 //! The box solver's runner: options and results, the entry points, and the
-//! depth-first loop over boxes that applies the steps of the module docs of
-//! [`rect`](super) to each box.
+//! depth-first loop over boxes that applies the steps of the [`rect`](super)
+//! docs to each box.
 
 use super::fatline::{fat_line_spans, FatLineClip};
 use super::hybrid::hybrid_spans;
+use super::net::{edge_indices, eval_box, one_signed, Node, Shape};
+use super::proof::{local_krawczyk, sign_lost};
+use super::spans::{clip, hull_spans, keep_aspect, preconditioned_spans, split};
 use crate::error::{Error, Result};
 use crate::poly::TensorBezier;
 use crate::scalar::interval;
 use crate::scalar::iv::Iv;
 use crate::solve::driver::VANISHING;
-use crate::solve::krawczyk::local::{self, LocalSystem};
 use crate::solve::krawczyk::{IBox, System, Verdict};
-use crate::solve::linalg::{inverse2, smallest_singular_left};
 use crate::solve::regions::{merge_roots, overlaps, undecided_clusters, Found};
 use crate::solve::solution::{Box2, Cluster, ClusterReason, Leftover, Root, Solution, Stats};
 use inari::Interval;
@@ -32,7 +33,7 @@ pub enum Query {
     Any,
 }
 
-/// How a box is clipped (step 4 of the module docs).
+/// How a box is clipped (step 4 of the [`rect`](super) docs).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum RectClip {
     /// Bézier clipping (Nishita, Sederberg & Kakimoto 1990): the convex hull
@@ -56,7 +57,7 @@ pub enum RectClip {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RectOptions {
     /// Boxes narrower than `eps` (relative to the domain's sides) become
-    /// leaves; see the module docs.
+    /// leaves; see the [`rect`](super) docs.
     pub eps: f64,
     /// Boxes processed before the run stops with `complete = false`.
     pub max_boxes: usize,
@@ -110,37 +111,32 @@ pub struct RectSolution {
     pub stopped_early: bool,
 }
 
-/// The widening of hull crossings (see the module docs).
-const MARGIN: f64 = 4e-15;
 /// Boxes at most this wide (relative) get a local Krawczyk test.
 const KRAWCZYK_BELOW: f64 = 0.125;
+
 /// A certified box narrower than this (relative to the box it was proven
 /// in) is reported; a wider one is clipped to it and certified again.
 const REPORT_BELOW: f64 = 1e-12;
+
 /// Stalled boxes narrower than this (relative) are not split but handed to
 /// the leaf test (see [`Runner::step`]).
 const SINGULAR_FLOOR: f64 = 1e-9;
-/// Scratch arrays on the stack hold this many coefficients per line; higher
-/// degrees skip the hull clip and the local Krawczyk test (they still split,
-/// and leaves are certified globally). The ray front end allows degree ≤ 20.
-pub(super) const STACK: usize = 24;
+
 /// The relative width of the strip cut along an edge where both equations
 /// may vanish ([`Runner::cut_vanishing_edges`]): `2⁻³⁰`, so that `1 − EDGE_STRIP`
 /// is exact.
 const EDGE_STRIP: f64 = 1.0 / (1u64 << 30) as f64;
+
 /// Stalled boxes below this (relative) size whose separating sign is lost
 /// to rounding are leaves ([`sign_lost`]).
 const LOST_BELOW: f64 = 1e-3;
-/// The smallest ratio of a clipped box's sides ([`keep_aspect`]).
-const MIN_ASPECT: f64 = 1e-3;
-/// Where boxes are split (exact, and so is `1 − SPLIT`).
-const SPLIT: f64 = 63.0 / 128.0;
+
 /// Coefficients beyond this magnitude are rejected (keeps every difference
 /// of two coefficients finite, which the hull crossings rely on).
 const MAX_MAGNITUDE: f64 = 1e300;
 
 /// Solves `f = g = 0` on the domain of `f` (a rectangle) by Bézier clipping on
-/// boxes; see the module docs for the method and [`RectSolution`] for what
+/// boxes; see the [`rect`](super) docs for the method and [`RectSolution`] for what
 /// the result guarantees.
 ///
 /// Errors: different domains, an equation whose coefficients all contain 0
@@ -315,45 +311,6 @@ pub(crate) fn solve_rect_iv(p: RectProblem, opts: &RectOptions) -> Result<RectSo
     Ok(run.finish(leftovers))
 }
 
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Shape {
-    pub(super) m: usize,
-    pub(super) n: usize,
-    pub(super) len: usize,
-    pub(super) polys: usize,
-}
-
-impl Shape {
-    /// The system `f, g` of bidegree `(m, n)`.
-    pub(super) fn pair(m: usize, n: usize) -> Self {
-        Shape {
-            m,
-            n,
-            len: (m + 1) * (n + 1),
-            polys: 2,
-        }
-    }
-}
-
-/// A box: the coefficients of every polynomial on it, its endpoints (each an
-/// enclosure), its trace index.
-#[derive(Clone, Debug)]
-struct Node {
-    c: Vec<Iv>,
-    bx: [[Iv; 2]; 2],
-    id: u32,
-}
-
-impl Node {
-    fn outer(&self) -> [[f64; 2]; 2] {
-        self.bx.map(|[lo, hi]| [lo.lo, hi.hi])
-    }
-
-    fn ibox(&self) -> IBox {
-        self.outer().map(|[lo, hi]| interval(lo, hi))
-    }
-}
-
 struct Runner {
     shape: Shape,
     opts: RectOptions,
@@ -524,7 +481,7 @@ impl Runner {
         if area <= 0.5 {
             return Step::Continue(node);
         }
-        // Stalled: clip again with preconditioned equations (module docs).
+        // Stalled: clip again with preconditioned equations (`rect` docs).
         match preconditioned_spans(&node.c, sh) {
             None => {
                 self.stats.run.clip_exclusions += 1;
@@ -768,391 +725,5 @@ impl Runner {
             },
             stopped_early: self.stopped_early,
         }
-    }
-}
-
-/// Bézier clipping of the box in both directions: the intersection of the
-/// spans of `f` and `g` (module docs, step 4); `None` if it is empty.
-fn hull_spans(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
-    let mut spans = [(0.0f64, 1.0f64); 2];
-    for (d, span) in spans.iter_mut().enumerate() {
-        for p in 0..2 {
-            let (a, b) = zero_span(&c[p * sh.len..(p + 1) * sh.len], sh, d)?;
-            *span = (span.0.max(a), span.1.min(b));
-        }
-        if span.0 > span.1 {
-            return None;
-        }
-    }
-    Some(spans)
-}
-
-fn one_signed(c: &[Iv]) -> bool {
-    c.iter().all(|x| x.lo > 0.0) || c.iter().all(|x| x.hi < 0.0)
-}
-
-/// The indices of the coefficients on one edge: `d = 0` the rows `i = 0`
-/// (`high = false`) or `i = m`, `d = 1` the columns `j = 0` or `j = n`.
-fn edge_indices(sh: Shape, d: usize, high: bool) -> impl Iterator<Item = usize> {
-    let (count, fixed) = if d == 0 {
-        (sh.n + 1, if high { sh.m } else { 0 })
-    } else {
-        (sh.m + 1, if high { sh.n } else { 0 })
-    };
-    (0..count).map(move |k| if d == 0 { at(sh, fixed, k) } else { at(sh, k, fixed) })
-}
-
-/// Index of coefficient `(i, j)`.
-#[inline]
-pub(super) fn at(sh: Shape, i: usize, j: usize) -> usize {
-    i * (sh.n + 1) + j
-}
-
-/// The span of `[0, 1]` in direction `d` (0: `s`, index `i`; 1: `t`, index
-/// `j`) where the convex hull of the coefficient ranges meets zero (module
-/// docs, step 4); `None` if it provably does not.
-fn zero_span(p: &[Iv], sh: Shape, d: usize) -> Option<(f64, f64)> {
-    let (k, other) = if d == 0 { (sh.m, sh.n) } else { (sh.n, sh.m) };
-    let mut lo = [0.0f64; STACK];
-    let mut hi = [0.0f64; STACK];
-    if k >= STACK {
-        return Some((0.0, 1.0));
-    }
-    for a in 0..=k {
-        let (mut l, mut h) = (f64::INFINITY, f64::NEG_INFINITY);
-        for b in 0..=other {
-            let c = if d == 0 { p[at(sh, a, b)] } else { p[at(sh, b, a)] };
-            if !c.is_finite() {
-                return Some((0.0, 1.0));
-            }
-            l = l.min(c.lo);
-            h = h.max(c.hi);
-        }
-        if !(l.is_finite() && h.is_finite()) {
-            return Some((0.0, 1.0));
-        }
-        lo[a] = l;
-        hi[a] = h;
-    }
-    let kf = k as f64;
-    let (mut a, mut b) = (f64::INFINITY, f64::NEG_INFINITY);
-    for i in 0..=k {
-        let xi = i as f64 / kf;
-        if lo[i] <= 0.0 && hi[i] >= 0.0 {
-            a = a.min(xi);
-            b = b.max(xi);
-        }
-        for j in i + 1..=k {
-            let xj = j as f64 / kf;
-            for yi in [lo[i], hi[i]] {
-                for yj in [lo[j], hi[j]] {
-                    if (yi < 0.0 && yj > 0.0) || (yi > 0.0 && yj < 0.0) {
-                        let x = xi + (xj - xi) * (yi / (yi - yj));
-                        a = a.min(x);
-                        b = b.max(x);
-                    }
-                }
-            }
-        }
-    }
-    if a > b {
-        return None;
-    }
-    Some(((a - MARGIN).max(0.0), (b + MARGIN).min(1.0)))
-}
-
-/// One de Casteljau subdivision of every polynomial of the node in
-/// direction `d` at `t`, keeping `[t, 1]` (`right`) or `[0, t]`.
-///
-/// In `s` (`d = 0`) whole rows are combined at once (`row_i ← lerp(row_i,
-/// row_{i+1})`), a contiguous loop the compiler vectorizes; in `t` each row
-/// is one contiguous line.
-fn subdivide_all(c: &mut [Iv], sh: Shape, d: usize, t: f64, right: bool) {
-    let w = sh.n + 1;
-    for block in c.chunks_exact_mut(sh.len).take(sh.polys) {
-        if d == 0 {
-            let k = sh.m;
-            for r in 1..=k {
-                if right {
-                    for i in 0..=k - r {
-                        let (head, tail) = block.split_at_mut((i + 1) * w);
-                        for (x, y) in head[i * w..].iter_mut().zip(&tail[..w]) {
-                            *x = Iv::lerp(*x, *y, t);
-                        }
-                    }
-                } else {
-                    for i in (r..=k).rev() {
-                        let (head, tail) = block.split_at_mut(i * w);
-                        for (y, x) in tail[..w].iter_mut().zip(&head[(i - 1) * w..]) {
-                            *y = Iv::lerp(*x, *y, t);
-                        }
-                    }
-                }
-            }
-        } else {
-            let k = sh.n;
-            for line in block.chunks_exact_mut(w) {
-                for r in 1..=k {
-                    if right {
-                        for i in 0..=k - r {
-                            line[i] = Iv::lerp(line[i], line[i + 1], t);
-                        }
-                    } else {
-                        for i in (r..=k).rev() {
-                            line[i] = Iv::lerp(line[i - 1], line[i], t);
-                        }
-                    }
-                }
-            }
-        }
-    }
-}
-
-/// Widens the kept spans so that neither side of the new box is narrower
-/// than [`MIN_ASPECT`] times the other (widths relative to the domain).
-///
-/// Why: a ray nearly along an iso-line clips one direction to ~1e-14 while
-/// the other is still ~1e-2; the collapsed side is then at the rounding
-/// floor, local Krawczyk cannot succeed, and the box ends as a leaf for the
-/// (slower) global certificate. Keeping more of a span is always sound.
-fn keep_aspect(spans: &mut [(f64, f64); 2], w: [f64; 2]) {
-    let new = [0, 1].map(|d| (spans[d].1 - spans[d].0) * w[d]);
-    for d in 0..2 {
-        let want = MIN_ASPECT * new[1 - d];
-        if new[d] < want && w[d] > 0.0 {
-            let r = 0.5 * (want / w[d] - (spans[d].1 - spans[d].0));
-            spans[d] = ((spans[d].0 - r).max(0.0), (spans[d].1 + r).min(1.0));
-        }
-    }
-}
-
-/// Restricts the node to `[α, β]` in direction `d` (module docs: exact
-/// sub-box through float split parameters).
-fn clip(node: &mut Node, sh: Shape, d: usize, alpha: f64, beta: f64) {
-    // γ ≥ (β − α)/(1 − α), so the kept part [α, α + (1 − α)γ] ⊇ [α, β].
-    let gamma = if beta >= 1.0 {
-        1.0
-    } else {
-        ((beta - alpha).next_up() / (1.0 - alpha).next_down())
-            .next_up()
-            .min(1.0)
-    };
-    if alpha > 0.0 {
-        subdivide_all(&mut node.c, sh, d, alpha, true);
-    }
-    if gamma < 1.0 {
-        subdivide_all(&mut node.c, sh, d, gamma, false);
-    }
-    let [lo, hi] = node.bx[d];
-    // Convex combinations: the endpoint enclosures never grow wider than
-    // their parents' (plus rounding), however many clips follow.
-    let new_lo = if alpha > 0.0 { Iv::lerp(lo, hi, alpha) } else { lo };
-    let new_hi = if gamma < 1.0 { Iv::lerp(new_lo, hi, gamma) } else { hi };
-    node.bx[d] = [new_lo, new_hi];
-}
-
-/// Splits the node at [`SPLIT`] in direction `d`.
-fn split(node: &Node, sh: Shape, d: usize) -> (Node, Node) {
-    let mut left = node.clone();
-    let mut right = node.clone();
-    subdivide_all(&mut left.c, sh, d, SPLIT, false);
-    subdivide_all(&mut right.c, sh, d, SPLIT, true);
-    let [lo, hi] = node.bx[d];
-    let mid = Iv::lerp(lo, hi, SPLIT);
-    left.bx[d] = [lo, mid];
-    right.bx[d] = [mid, hi];
-    (left, right)
-}
-
-/// An enclosure of the polynomial with row-major coefficients `p` of
-/// bidegree `(m, n)` over the local box `s × t` (any floats, extrapolation
-/// included), by de Casteljau with [`Iv::lerp_range`].
-pub(crate) fn eval_box(p: &[Iv], m: usize, n: usize, s: [f64; 2], t: [f64; 2]) -> Iv {
-    if m >= STACK || n >= STACK {
-        return Iv::new(f64::NEG_INFINITY, f64::INFINITY);
-    }
-    let mut col = [Iv::point(0.0); STACK];
-    let mut row = [Iv::point(0.0); STACK];
-    for (i, line) in p.chunks(n + 1).enumerate() {
-        row[..=n].copy_from_slice(line);
-        for k in 1..=n {
-            for j in 0..=n - k {
-                row[j] = Iv::lerp_range(row[j], row[j + 1], t[0], t[1]);
-            }
-        }
-        col[i] = row[0];
-    }
-    for k in 1..=m {
-        for i in 0..=m - k {
-            col[i] = Iv::lerp_range(col[i], col[i + 1], s[0], s[1]);
-        }
-    }
-    col[0]
-}
-
-/// The combination of `f` and `g` closest to vanishing (by the Jacobian at
-/// the box's centre, in domain coordinates: `w` are the box's relative
-/// widths) has every coefficient possibly zero: the sign that would separate
-/// the curves is lost to rounding on the whole box, and no subdivision
-/// restores it (a child's coefficients are convex combinations of these).
-/// Near a triple root that region is ~1e-5 wide.
-///
-/// Domain coordinates matter: on a long thin box an equation varying only
-/// across it is lost on the box, while splitting along the box still
-/// separates roots; its Jacobian row is then not small, so it is not the
-/// combination tested.
-fn sign_lost(c: &[Iv], sh: Shape, w: [f64; 2]) -> bool {
-    let (f, g) = (&c[..sh.len], &c[sh.len..2 * sh.len]);
-    let [a, b] = jacobian_row(f, sh);
-    let [cc, d] = jacobian_row(g, sh);
-    let j = [a.mid() / w[0], b.mid() / w[1], cc.mid() / w[0], d.mid() / w[1]];
-    let Some(v) = smallest_singular_left(j) else {
-        return false;
-    };
-    let (va, vb) = (Iv::point(v[0]), Iv::point(v[1]));
-    f.iter().zip(g).all(|(x, y)| {
-        let h = va.mul(*x).add(vb.mul(*y));
-        !(h.lo > 0.0 || h.hi < 0.0)
-    })
-}
-
-/// Spans from equations that are combinations of `f` and `g` (every root of
-/// the system is a root of each): the rows of `Y·F` with `Y ≈ J(centre)⁻¹`,
-/// which makes the system nearly the identity so the hulls are tight, and
-/// `h = a f + b g` with `(a, b)` the left singular vector of `J` for its
-/// smallest singular value, which is nearly constant where `f = 0` and
-/// `g = 0` run (nearly) parallel — there it proves no root at once, where
-/// axis-aligned hulls of `f` and `g` would need boxes as thin as the gap.
-/// `None` when some combination proves there is no root.
-fn preconditioned_spans(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
-    let (f, g) = (&c[..sh.len], &c[sh.len..2 * sh.len]);
-    let [a, b] = jacobian_row(f, sh);
-    let [cc, d] = jacobian_row(g, sh);
-    let j = [a, b, cc, d].map(Iv::mid);
-    if !j.iter().all(|x| x.is_finite()) {
-        return Some([(0.0, 1.0); 2]);
-    }
-    let mut combos: Vec<[f64; 2]> = Vec::with_capacity(3);
-    if let Some(y) = inverse2(j, 0.0) {
-        combos.push([y[0], y[1]]);
-        combos.push([y[2], y[3]]);
-    }
-    if let Some(v) = smallest_singular_left(j) {
-        combos.push(v);
-    }
-    let mut spans = [(0.0f64, 1.0f64); 2];
-    let mut h = vec![Iv::point(0.0); sh.len];
-    for w in combos {
-        let (wa, wb) = (Iv::point(w[0]), Iv::point(w[1]));
-        for (k, x) in h.iter_mut().enumerate() {
-            *x = wa.mul(f[k]).add(wb.mul(g[k]));
-        }
-        if one_signed(&h) {
-            return None;
-        }
-        for (dir, span) in spans.iter_mut().enumerate() {
-            let (lo, hi) = zero_span(&h, sh, dir)?;
-            *span = (span.0.max(lo), span.1.min(hi));
-            if span.0 > span.1 {
-                return None;
-            }
-        }
-    }
-    Some(spans)
-}
-
-/// The polynomial's value at the local point `(s, t)` (floats in `[0, 1]`).
-fn eval_local(p: &[Iv], sh: Shape, s: f64, t: f64) -> Iv {
-    let mut col = [Iv::point(0.0); STACK];
-    let mut row = [Iv::point(0.0); STACK];
-    for i in 0..=sh.m {
-        row[..=sh.n].copy_from_slice(&p[at(sh, i, 0)..=at(sh, i, sh.n)]);
-        for r in 1..=sh.n {
-            for j in 0..=sh.n - r {
-                row[j] = Iv::lerp(row[j], row[j + 1], t);
-            }
-        }
-        col[i] = row[0];
-    }
-    for r in 1..=sh.m {
-        for i in 0..=sh.m - r {
-            col[i] = Iv::lerp(col[i], col[i + 1], s);
-        }
-    }
-    col[0]
-}
-
-/// The value at the local point `(s, t)` of the polynomial with the
-/// midpoints of `p` as coefficients, in `f64` (a proposal, never a proof).
-fn eval_mid(p: &[Iv], sh: Shape, s: f64, t: f64) -> f64 {
-    let mut col = [0.0f64; STACK];
-    let mut row = [0.0f64; STACK];
-    for i in 0..=sh.m {
-        for (r, c) in row.iter_mut().zip(&p[at(sh, i, 0)..=at(sh, i, sh.n)]) {
-            *r = c.mid();
-        }
-        for r in 1..=sh.n {
-            for j in 0..=sh.n - r {
-                row[j] += t * (row[j + 1] - row[j]);
-            }
-        }
-        col[i] = row[0];
-    }
-    for r in 1..=sh.m {
-        for i in 0..=sh.m - r {
-            col[i] += s * (col[i + 1] - col[i]);
-        }
-    }
-    col[0]
-}
-
-/// Hulls of `∂p/∂s` and `∂p/∂t` over the box, from the derivative's
-/// Bernstein coefficients.
-fn jacobian_row(p: &[Iv], sh: Shape) -> [Iv; 2] {
-    let mut ds: Option<Iv> = None;
-    let mut dt: Option<Iv> = None;
-    for i in 0..=sh.m {
-        for j in 0..=sh.n {
-            let c = p[at(sh, i, j)];
-            if i < sh.m {
-                let x = p[at(sh, i + 1, j)].sub(c);
-                ds = Some(ds.map_or(x, |h| h.hull(x)));
-            }
-            if j < sh.n {
-                let x = p[at(sh, i, j + 1)].sub(c);
-                dt = Some(dt.map_or(x, |h| h.hull(x)));
-            }
-        }
-    }
-    let z = Iv::point(0.0);
-    [ds.unwrap_or(z).scale(sh.m as f64), dt.unwrap_or(z).scale(sh.n as f64)]
-}
-
-/// Krawczyk on `X = [0, 1]²` in the box's local coordinates (module docs,
-/// step 3), then contraction ([`local::certify_unit_box`]).
-fn local_krawczyk(c: &[Iv], sh: Shape) -> Verdict<[Iv; 2], ()> {
-    if sh.m >= STACK || sh.n >= STACK {
-        return Verdict::Undecided(());
-    }
-    let (f, g) = (&c[..sh.len], &c[sh.len..2 * sh.len]);
-    let [a, b] = jacobian_row(f, sh);
-    let [cc, d] = jacobian_row(g, sh);
-    local::certify_unit_box(&BoxSystem { f, g, sh }, [a, b, cc, d])
-}
-
-/// The system on a box, as [`local`] evaluates it (degrees below [`STACK`]).
-struct BoxSystem<'a> {
-    f: &'a [Iv],
-    g: &'a [Iv],
-    sh: Shape,
-}
-
-impl LocalSystem for BoxSystem<'_> {
-    fn value(&self, s: f64, t: f64) -> [Iv; 2] {
-        [eval_local(self.f, self.sh, s, t), eval_local(self.g, self.sh, s, t)]
-    }
-
-    fn value_mid(&self, s: f64, t: f64) -> [f64; 2] {
-        [eval_mid(self.f, self.sh, s, t), eval_mid(self.g, self.sh, s, t)]
     }
 }
