@@ -6,9 +6,6 @@
 use crate::solve::krawczyk::{Bivariate, IBox, System, Verdict};
 use crate::solve::solution::{Box2, Cluster, ClusterReason, Solution, Stats};
 use inari::Interval;
-// Doc links only.
-#[cfg(doc)]
-use crate::solve::finish_exact;
 
 /// A box the iteration stopped at (or a region joined from such boxes), with
 /// the diameters along the path that reached it.
@@ -18,6 +15,7 @@ pub(crate) struct Found {
     pub(crate) diameters: Vec<f64>,
 }
 
+/// The closed boxes share a point.
 pub(crate) fn overlaps(a: IBox, b: IBox) -> bool {
     !a[0].disjoint(b[0]) && !a[1].disjoint(b[1])
 }
@@ -203,7 +201,7 @@ fn undecided(region: Found) -> Cluster {
 
 /// The undecided leaves as clusters, touching leaves as one region, but
 /// regions near each other not joined yet ([`join_undecided`] does that):
-/// the exact retry ([`finish_exact`]) settles each region on its own, where
+/// the exact retry ([`finish_exact`](super::finish_exact)) settles each region on its own, where
 /// the hull of two regions 1e-7 apart (two close roots) would hold both.
 pub(crate) fn touching_regions(leaves: Vec<Found>) -> Vec<Cluster> {
     group_overlapping(leaves)

@@ -11,6 +11,8 @@ use crate::solve::krawczyk::IBox;
 /// and leaves are certified globally). The ray front end allows degree ≤ 20.
 pub(super) const STACK: usize = 24;
 
+/// The layout of a box's coefficients: `polys` polynomials of bidegree
+/// `(m, n)`, `len` coefficients each, row-major, one after the other.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Shape {
     pub(super) m: usize,
@@ -48,6 +50,8 @@ pub(super) fn edge_indices(sh: Shape, d: usize, high: bool) -> impl Iterator<Ite
     (0..count).map(move |k| if d == 0 { at(sh, fixed, k) } else { at(sh, k, fixed) })
 }
 
+/// Every coefficient is strictly positive, or every one strictly negative:
+/// no zero on the box (the Bernstein basis is a positive partition of unity).
 pub(super) fn one_signed(c: &[Iv]) -> bool {
     c.iter().all(|x| x.lo > 0.0) || c.iter().all(|x| x.hi < 0.0)
 }
