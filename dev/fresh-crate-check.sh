@@ -45,10 +45,10 @@ if cargo tree -e normal --prefix none | grep -E '^(clap|indicatif|serde_json) ';
     echo "fresh-crate-check: the library pulls in CLI dependencies" >&2
     exit 1
 fi
-cargo build --release --bins --quiet
+cargo build --bins --quiet
 for bin in src/bin/readme_*.rs; do
     name=$(basename "$bin" .rs)
     echo "== $name"
-    "$CARGO_TARGET_DIR/release/$name" > /dev/null
+    "$CARGO_TARGET_DIR/debug/$name" > /dev/null
 done
 echo "fresh-crate-check: ok"

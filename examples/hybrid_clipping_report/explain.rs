@@ -470,7 +470,7 @@ fn separation_in_tree(ex: &Example, m: Method, variant: Variant) -> Res<Option<(
         &ball(&g),
         driver::Exact::Rational(&exact),
         &limits,
-        &mut |_| Probe::Undecided,
+        &mut |_| Probe::Undecided(()),
     );
     let sol = repro::run(ex, m, 1e-14, variant)?;
     let near = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);

@@ -30,6 +30,7 @@ mod convert;
 mod endpoints;
 pub(crate) mod iv;
 mod kernel;
+pub(crate) mod rational_interval;
 
 pub use convert::{rational_to_f64, rational_to_interval};
 pub use kernel::{Kernel, Scalar, Sign};

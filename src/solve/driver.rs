@@ -8,6 +8,7 @@
 //! every coefficient of `f` or of `g` on it has one strict sign.
 
 use super::fatcurve::ClipBounds;
+use super::krawczyk::Verdict;
 use super::method::{clip_bounds, clip_bounds_swapped, Method};
 use super::num::Geo;
 use super::tribox::TriBox;
@@ -79,16 +80,10 @@ pub enum SplitRule {
     PaperLiteral,
 }
 
-/// What a probe (Krawczyk on a stalled tri-box) proved.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Probe {
-    /// Exactly one root in (a box containing) the tri-box: stop refining it.
-    Unique,
-    /// No root in the tri-box: discard it.
-    NoRoot,
-    /// Nothing proven.
-    Undecided,
-}
+/// What a probe (Krawczyk on a stalled tri-box) proved: a unique root in (a
+/// box containing) the tri-box stops refining it, no root discards it. The
+/// caller keeps the certificate; the driver needs only the verdict.
+pub type Probe = Verdict<()>;
 
 /// Below this diameter a stalled, undecided tri-box is not split further:
 /// it sits at the precision floor of a multiple or near-multiple root, where
@@ -518,7 +513,7 @@ fn separating_combination(f: &TriBall, g: &TriBall) -> Combination {
     let centre = [1.0 / 3.0; 3];
     let (_, a, _) = f.jet2(&centre);
     let (_, b, _) = g.jet2(&centre);
-    let Some(w) = super::method::smallest_singular_left([a[0], a[1], b[0], b[1]]) else {
+    let Some(w) = super::linalg::smallest_singular_left([a[0], a[1], b[0], b[1]]) else {
         return Combination::Open;
     };
     let norm = w[0].abs().max(w[1].abs());
@@ -809,14 +804,14 @@ fn step<G: Geo>(cx: &mut Ctx, mut item: Leaf, stack: &mut Vec<Leaf>, probe: &mut
     let verdict = if probe_here && !throttled {
         cx.out.counters.probes += 1;
         let v = probe(&tb);
-        cx.out.futile_probes = if v == Probe::Undecided {
+        cx.out.futile_probes = if v == Probe::Undecided(()) {
             cx.out.futile_probes + 1
         } else {
             0
         };
         v
     } else {
-        Probe::Undecided
+        Probe::Undecided(())
     };
     let next = Leaf {
         tb,
@@ -830,8 +825,8 @@ fn step<G: Geo>(cx: &mut Ctx, mut item: Leaf, stack: &mut Vec<Leaf>, probe: &mut
             cx.out.counters.probe_exclusions += 1;
             return;
         }
-        Probe::Unique => true,
-        Probe::Undecided if !progressed && probe_here && G::RIGOROUS => {
+        Probe::Unique(()) => true,
+        Probe::Undecided(()) if !progressed && probe_here && G::RIGOROUS => {
             match separating_combination(&next.fa, &next.fb) {
                 Combination::NoRoot => {
                     cx.out.counters.sign_exclusions += 1;
@@ -846,7 +841,7 @@ fn step<G: Geo>(cx: &mut Ctx, mut item: Leaf, stack: &mut Vec<Leaf>, probe: &mut
                 }
             }
         }
-        Probe::Undecided => false,
+        Probe::Undecided(()) => false,
     };
     if stop_here || progressed {
         let leaf = at_level(&mut cx.out, next, level, new_diam);

@@ -5,6 +5,7 @@ use super::fatcurve::{
     bezier_bounds, clip_against_fat_curves, clip_against_fat_curves_swapped, intersect_bounds, ClipBounds, Fat, Linear,
     Quadratic,
 };
+use super::linalg::solve3;
 use super::num::Geo;
 use crate::poly::{Reduced, TriBall};
 use std::fmt;
@@ -241,81 +242,6 @@ fn apply_general(fa: &TriBall, fb: &TriBall, x: [f64; 5], c: [f64; 3]) -> TriBal
         [at(0.0, 0.0), at(1.0, 0.0), at(0.0, 1.0)]
     };
     TriBall::linear_combination(linear(1.0, x[1], x[2]), fa, linear(x[0], x[3], x[4]), fb)
-}
-
-/// The left singular vector of the smallest singular value of the 2×2
-/// matrix `j` (row-major): the combination of the rows that is closest to
-/// vanishing. `None` when it is not finite or zero.
-pub(crate) fn smallest_singular_left(j: [f64; 4]) -> Option<[f64; 2]> {
-    // J Jᵀ = [[p, q], [q, r]]; eigenvector of its smallest eigenvalue.
-    let (p, q, r) = (
-        j[0] * j[0] + j[1] * j[1],
-        j[0] * j[2] + j[1] * j[3],
-        j[2] * j[2] + j[3] * j[3],
-    );
-    let lam = 0.5 * (p + r) - (0.25 * (p - r) * (p - r) + q * q).sqrt();
-    let (v1, v2) = ([q, lam - p], [lam - r, q]);
-    let v = if v1[0].abs() + v1[1].abs() >= v2[0].abs() + v2[1].abs() {
-        v1
-    } else {
-        v2
-    };
-    (v.iter().all(|x| x.is_finite()) && v != [0.0, 0.0]).then_some(v)
-}
-
-/// Gaussian elimination with partial pivoting; `None` when a pivot is tiny
-/// relative to its row (numerically singular).
-fn solve3(a: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
-    gauss(a, b, Pivoting::Scaled(1e-10))
-}
-
-/// How [`gauss`] picks pivots and when it gives up.
-#[derive(Clone, Copy)]
-pub(crate) enum Pivoting {
-    /// Largest `|a_ic|` relative to the largest entry of row `i`; singular
-    /// when that ratio is below the threshold (or a row is 0 or not finite).
-    Scaled(f64),
-    /// Largest `|a_ic|`; singular when it is below the threshold.
-    Plain(f64),
-}
-
-/// Solves `a x = b` by Gaussian elimination with partial pivoting, in `f64`
-/// (the multipliers and fits that use it need good values, not proofs);
-/// `None` when numerically singular by `pivoting`'s test.
-// Row operations read one row while writing another: index loops are clearer.
-#[allow(clippy::needless_range_loop)]
-pub(crate) fn gauss<const N: usize>(mut a: [[f64; N]; N], mut b: [f64; N], pivoting: Pivoting) -> Option<[f64; N]> {
-    let (scale, tiny) = match pivoting {
-        Pivoting::Scaled(tiny) => {
-            let scale = a.map(|r| r.iter().fold(0.0f64, |m, x| m.max(x.abs())));
-            if scale.iter().any(|&s| s == 0.0 || !s.is_finite()) {
-                return None;
-            }
-            (scale, tiny)
-        }
-        Pivoting::Plain(tiny) => ([1.0; N], tiny),
-    };
-    for col in 0..N {
-        let piv = (col..N).max_by(|&i, &j| (a[i][col] / scale[i]).abs().total_cmp(&(a[j][col] / scale[j]).abs()))?;
-        if (a[piv][col] / scale[piv]).abs() < tiny {
-            return None;
-        }
-        a.swap(col, piv);
-        b.swap(col, piv);
-        for r in col + 1..N {
-            let f = a[r][col] / a[col][col];
-            for k in col..N {
-                a[r][k] -= f * a[col][k];
-            }
-            b[r] -= f * b[col];
-        }
-    }
-    let mut x = [0.0; N];
-    for r in (0..N).rev() {
-        let s: f64 = (r + 1..N).map(|k| a[r][k] * x[k]).sum();
-        x[r] = (b[r] - s) / a[r][r];
-    }
-    Some(x)
 }
 
 /// The width `2δ / |∇l|` of a fat line's strip in local coordinates (∞ for

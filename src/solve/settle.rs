@@ -27,9 +27,12 @@
 //! reduction it repeats in rationals with exact plane normals.
 
 use super::degenerate::gcd;
-use super::Box2;
+use super::krawczyk::exact::{self, RationalSystem};
+use super::krawczyk::Verdict;
+use super::solution::Box2;
 use crate::error::{Error, Result};
 use crate::poly::{tri_index, tri_len, Direction, TensorBezier, TriBezier};
+use crate::scalar::rational_interval::RI;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
@@ -53,8 +56,6 @@ pub enum Settled {
 /// limit only stops the hopeless cases (a root exactly on an edge that the
 /// gcd test could not see).
 const REFINE_STEPS: usize = 12;
-/// Steps of [`ExactSystem::certify`].
-const CERTIFY_STEPS: usize = 4;
 
 /// An edge of the domain.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -69,17 +70,6 @@ pub enum Edge {
     V1,
     /// `u + v = 1` (triangle).
     Hypotenuse,
-}
-
-/// What exact Krawczyk proves about a box ([`ExactSystem::certify`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Certificate {
-    /// Exactly one root, simple, and it lies in this box.
-    Unique(Box2),
-    /// No root.
-    NoRoot,
-    /// Nothing proven.
-    Undecided,
 }
 
 /// The domain and basis of an [`ExactSystem`].
@@ -361,7 +351,7 @@ impl ExactSystem {
     /// in the closed domain.
     fn refine(&self, mut x: [RI; 2], in_domain: bool) -> Settled {
         for _ in 0..REFINE_STEPS {
-            let Some(k) = self.krawczyk(&x) else {
+            let Some(k) = exact::krawczyk(self, &x) else {
                 return Settled::Undecided;
             };
             let (Some(a), Some(b)) = (k[0].meet(&x[0]), k[1].meet(&x[1])) else {
@@ -386,169 +376,25 @@ impl ExactSystem {
 
     /// Krawczyk in exact arithmetic on the closed box `bx` widened by a
     /// tenth of its size on each side (a root on its edge should not defeat
-    /// the test): [`Certificate::Unique`] with a box holding the only root of
+    /// the test): [`Verdict::Unique`] with a box holding the only root of
     /// the widened box, a simple one, once `K(X) ⊂ int X` for a contraction
     /// `X` of it (every root of the widened box stays in each `X`, so the
-    /// uniqueness extends to it); [`Certificate::NoRoot`] when `K(X) ∩ X` is
+    /// uniqueness extends to it); [`Verdict::NoRoot`] when `K(X) ∩ X` is
     /// empty. Used on the small undecided regions that rounding left: with
     /// exact coefficients the noise that defeated the interval Krawczyk test
     /// is gone (two roots 1e-8 apart, say).
-    pub fn certify(&self, bx: Box2) -> Certificate {
-        let q = |x: f64| Q::from_float(x);
-        let widen = |b: [f64; 2]| {
-            let r = (b[1] - b[0]) / 10.0;
-            Some((q(b[0] - r)?, q(b[1] + r)?))
-        };
-        let (Some((u0, u1)), Some((v0, v1))) = (widen(bx.u), widen(bx.v)) else {
-            return Certificate::Undecided;
-        };
-        let mut x = [RI::new(u0, u1), RI::new(v0, v1)];
-        // K(X) ⊂ int X comes within a few steps when it comes at all; a step
-        // that does not halve the box means it will not (and the rationals'
-        // sizes double with every step that does).
-        for _ in 0..CERTIFY_STEPS {
-            let Some(k) = self.krawczyk(&x) else {
-                return Certificate::Undecided;
-            };
-            let inside = (0..2).all(|d| k[d].lo > x[d].lo && k[d].hi < x[d].hi);
-            if inside {
-                let out = |r: &RI| {
-                    let (lo, hi) = (r.lo.to_f64().unwrap_or(f64::NAN), r.hi.to_f64().unwrap_or(f64::NAN));
-                    // Outward by an ulp: `to_f64` rounds to nearest.
-                    [lo.next_down(), hi.next_up()]
-                };
-                return Certificate::Unique(Box2 {
-                    u: out(&k[0]),
-                    v: out(&k[1]),
-                });
-            }
-            let (Some(a), Some(b)) = (k[0].meet(&x[0]), k[1].meet(&x[1])) else {
-                return Certificate::NoRoot;
-            };
-            let before = x[0].width().max(x[1].width());
-            let after = a.width().max(b.width());
-            if after * Q::from_integer(2.into()) > before {
-                return Certificate::Undecided;
-            }
-            x = [a, b];
-        }
-        Certificate::Undecided
-    }
-
-    /// `K(X) = x̃ − Y F(x̃) + (I − Y J(X))(X − x̃)`, endpoints rounded outward.
-    fn krawczyk(&self, x: &[RI; 2]) -> Option<[RI; 2]> {
-        let width = x[0].width().max(x[1].width());
-        let bits = precision_bits(&width)?;
-        let mid = [x[0].mid_rounded(bits), x[1].mid_rounded(bits)];
-        let pt = [RI::point(mid[0].clone()), RI::point(mid[1].clone())];
-        let fm = [0, 1].map(|k| eval(self.shape, &self.f[k], &pt).lo);
-        let jm: [[Q; 2]; 2] = [0, 1].map(|k| [0, 1].map(|d| self.df()[k][d].enclose(&pt).lo));
-        let y = inverse(&jm, bits)?;
-        let jx: [[RI; 2]; 2] = [0, 1].map(|k| [0, 1].map(|d| self.df()[k][d].enclose(x)));
-        let dx = [x[0].sub_point(&mid[0]), x[1].sub_point(&mid[1])];
-        let mut out: [RI; 2] = [RI::point(Q::zero()), RI::point(Q::zero())];
-        for (i, o) in out.iter_mut().enumerate() {
-            let yf = &y[i][0] * &fm[0] + &y[i][1] * &fm[1];
-            let mut acc = RI::point(&mid[i] - yf);
-            for (j, dxj) in dx.iter().enumerate() {
-                // (I − Y J)_ij = δ_ij − Σ_l Y_il J_lj
-                let yj = jx[0][j].scale(&y[i][0]).add(&jx[1][j].scale(&y[i][1]));
-                let delta = if i == j { Q::one() } else { Q::zero() };
-                let m = RI::point(delta).sub(&yj);
-                acc = acc.add(&m.mul(dxj));
-            }
-            *o = acc.round_out(bits);
-        }
-        Some(out)
+    pub fn certify(&self, bx: Box2) -> Verdict<Box2, ()> {
+        exact::certify(self, bx)
     }
 }
 
-/// Bits after the binary point that keep rounding far below `width²`.
-fn precision_bits(width: &Q) -> Option<u64> {
-    if !width.is_positive() {
-        return Some(64);
+impl RationalSystem for ExactSystem {
+    fn value(&self, x: &[RI; 2]) -> [RI; 2] {
+        [0, 1].map(|k| eval(self.shape, &self.f[k], x))
     }
-    // log2(width) ≈ bits(numer) − bits(denom). Rounding to about the square
-    // of the width keeps it from limiting the (quadratic) contraction.
-    let e = width.numer().bits() as i64 - width.denom().bits() as i64;
-    let bits = (64 - 2 * e).max(64);
-    (bits < 1 << 20).then_some(bits as u64)
-}
 
-/// `Y ≈ J⁻¹`: the exact inverse of the midpoint Jacobian rounded to
-/// multiples of `2^-bits` relative to its size (any `Y` keeps Krawczyk
-/// rigorous; a sharp one makes `I − Y J(X)` of the order of the box, so the
-/// contraction is quadratic, and on a linear system it is one step).
-fn inverse(j: &[[Q; 2]; 2], bits: u64) -> Option<[[Q; 2]; 2]> {
-    let det = &j[0][0] * &j[1][1] - &j[0][1] * &j[1][0];
-    if det.is_zero() {
-        return None;
-    }
-    let inv = [[&j[1][1] / &det, -&j[0][1] / &det], [-&j[1][0] / &det, &j[0][0] / &det]];
-    // Round relative to the largest entry, so that the denominators stay
-    // bounded whatever the scale.
-    let big = inv.iter().flatten().map(|x| x.abs()).max().expect("four entries");
-    let e = big.numer().bits() as i64 - big.denom().bits() as i64;
-    let shift = (bits as i64 - e).clamp(0, 1 << 20) as u64;
-    let s = Q::from_integer(BigInt::one() << shift);
-    Some(inv.map(|r| r.map(|x| (x * &s).round() / &s)))
-}
-
-/// A closed interval with exact rational endpoints.
-#[derive(Clone, Debug, PartialEq)]
-struct RI {
-    lo: Q,
-    hi: Q,
-}
-
-impl RI {
-    fn new(lo: Q, hi: Q) -> Self {
-        Self { lo, hi }
-    }
-    fn point(x: Q) -> Self {
-        Self { lo: x.clone(), hi: x }
-    }
-    fn add(&self, b: &Self) -> Self {
-        Self::new(&self.lo + &b.lo, &self.hi + &b.hi)
-    }
-    fn sub(&self, b: &Self) -> Self {
-        Self::new(&self.lo - &b.hi, &self.hi - &b.lo)
-    }
-    fn sub_point(&self, b: &Q) -> Self {
-        Self::new(&self.lo - b, &self.hi - b)
-    }
-    fn scale(&self, s: &Q) -> Self {
-        let (a, b) = (&self.lo * s, &self.hi * s);
-        if s.is_negative() {
-            Self::new(b, a)
-        } else {
-            Self::new(a, b)
-        }
-    }
-    fn mul(&self, b: &Self) -> Self {
-        let p = [&self.lo * &b.lo, &self.lo * &b.hi, &self.hi * &b.lo, &self.hi * &b.hi];
-        let lo = p.iter().min().expect("four").clone();
-        let hi = p.iter().max().expect("four").clone();
-        Self::new(lo, hi)
-    }
-    fn width(&self) -> Q {
-        &self.hi - &self.lo
-    }
-    fn meet(&self, b: &Self) -> Option<Self> {
-        let lo = (&self.lo).max(&b.lo).clone();
-        let hi = (&self.hi).min(&b.hi).clone();
-        (lo <= hi).then(|| Self::new(lo, hi))
-    }
-    /// The midpoint rounded to a multiple of `2^-bits`.
-    fn mid_rounded(&self, bits: u64) -> Q {
-        let m = (&self.lo + &self.hi) / Q::from_integer(2.into());
-        let s = Q::from_integer(BigInt::one() << bits);
-        (m * &s).round() / s
-    }
-    /// Endpoints moved outward to multiples of `2^-bits`.
-    fn round_out(&self, bits: u64) -> Self {
-        let s = Q::from_integer(BigInt::one() << bits);
-        Self::new((&self.lo * &s).floor() / &s, (&self.hi * &s).ceil() / &s)
+    fn jacobian(&self, x: &[RI; 2]) -> [[RI; 2]; 2] {
+        [0, 1].map(|k| [0, 1].map(|d| self.df()[k][d].enclose(x)))
     }
 }
 

@@ -38,8 +38,8 @@ fn main() {
             swap_roles: true,
         };
         let (fb, gb) = (TriBall::enclose(&f).unwrap(), TriBall::enclose(&g).unwrap());
-        let ri = driver::run::<GeoIv>(&fb, &gb, Exact::None, &limits, &mut |_| Probe::Undecided);
-        let rf = driver::run::<f64>(&fb, &gb, Exact::None, &limits, &mut |_| Probe::Undecided);
+        let ri = driver::run::<GeoIv>(&fb, &gb, Exact::None, &limits, &mut |_| Probe::Undecided(()));
+        let rf = driver::run::<f64>(&fb, &gb, Exact::None, &limits, &mut |_| Probe::Undecided(()));
         println!(
             "certified: {:?} leaves {}\nplain:     {:?} leaves {}",
             ri.counters,

@@ -19,25 +19,12 @@
 //! has exactly one zero in a box `X` holding all of the group's boxes. The
 //! stored pieces join exactly (they share their boundary control points bit
 //! for bit), so `G` is continuous and piecewise polynomial, and every true
-//! hit in `X` is a zero of `G`. Along a segment in `X`, `G` runs through the
-//! pieces in turn, so `G(x) − G(y) = A (x − y)` with `A = Σ λ_k A_k` a convex
-//! combination of the pieces' Jacobians `A_k ∈ J_k(X)` over `X`. Hence
-//!
-//! ```text
-//! K(X) = x̃ − Y G(x̃) + hull ⋃_k (I − Y J_k(X)) (X − x̃),    Y ≈ (mid hull_k J_k(X))⁻¹,
-//! ```
-//! encloses `x − Y G(x)` for every `x ∈ X` (`(I − Y A) d = Σ λ_k (I − Y A_k) d`),
-//! and Krawczyk's proofs go through (Krawczyk 1969; Neumaier 1990, *Interval
-//! Methods for Systems of Equations*, ch. 5): `K(X) ⊂ int X` gives a zero by
-//! Brouwer, and `|I − Y A_k| r < r` for every `k` (`r = rad X`) gives it for
-//! every convex combination, so every such `A` is regular and the zero is
-//! unique. Multiplying by the interval hull of the `J_k` instead would mix
-//! entries of different pieces and fail across a crease, where the pieces'
-//! `∂G/∂u` differ while `∂G/∂v` (along the line) agree; the per-piece form
-//! succeeds there whenever both sides face the same way (for boxes small
-//! enough that each `J_k(X)` is nearly a point). On success the
-//! group becomes one certified hit with the contracted box and `t` enclosed
-//! over it.
+//! hit in `X` is a zero of `G`. The operator is Krawczyk's for piecewise
+//! systems (`solve::krawczyk::piecewise`: `G(x̃)` enclosed over the pieces
+//! holding `x̃`, and one `I − Y J_k(X)` per piece meeting `X`, which keeps
+//! the proof valid across a crease, where the pieces' `∂G/∂u` differ while
+//! `∂G/∂v` (along the line) agree). On success the group becomes one
+//! certified hit with the contracted box and `t` enclosed over it.
 //!
 //! # Degenerate cases
 //! Where the pieces meeting at the hit do not all face the same way as seen
@@ -46,11 +33,13 @@
 //! all kept. A hit is never dropped; at worst each piece reports it.
 
 use super::surface::{BezierPiece, BsplineSurface};
-use crate::poly::{Direction, TensorBezier};
+use crate::poly::TensorBezier;
 use crate::ray::hit::{Hit, HitBox, HitStatus};
 use crate::ray::planes::Planes;
 use crate::ray::query::Ray;
 use crate::scalar::{interval, point};
+use crate::solve::krawczyk::piecewise::{self, Piece, Piecewise};
+use crate::solve::krawczyk::{IBox, Verdict};
 use crate::solve::UndecidedReason;
 use inari::Interval;
 use std::collections::BTreeMap;
@@ -61,7 +50,7 @@ fn overlaps(a: [f64; 2], b: [f64; 2]) -> bool {
 
 /// Groups certified hits of different pieces whose `(u, v)` boxes overlap
 /// (transitively) and replaces a group by one hit where
-/// [`certify_piecewise`] proves a single zero; everything else is kept.
+/// [`piecewise::certify`] proves a single zero; everything else is kept.
 pub(super) fn merge_knot_line_duplicates(
     surface: &BsplineSurface,
     ray: &Ray,
@@ -113,9 +102,9 @@ pub(super) fn merge_knot_line_duplicates(
         };
         let x0 = [hull(|h| h.bx.u), hull(|h| h.bx.v)];
         let planes = planes.get_or_insert_with(|| Planes::of(ray));
-        match certify_piecewise(surface, planes, x0) {
-            Some(k) => out.extend(merged_hit(surface, planes, k, range)),
-            None => out.extend(group),
+        match piecewise::certify(&KnotLineSystem { surface, planes }, x0) {
+            Verdict::Unique(k) => out.extend(merged_hit(surface, planes, k, range)),
+            Verdict::NoRoot | Verdict::Undecided(_) => out.extend(group),
         }
     }
     out
@@ -162,8 +151,6 @@ fn merged_hit(surface: &BsplineSurface, planes: &Planes, k: IBox, [lo, hi]: [f64
     })
 }
 
-type IBox = [Interval; 2];
-
 /// The pieces whose extended rectangles meet the box `x` (the outer pieces
 /// extend to infinity, so every point of the plane belongs to a piece).
 fn meeting(surface: &BsplineSurface, x: IBox) -> impl Iterator<Item = &BezierPiece> {
@@ -179,145 +166,39 @@ fn spans_meeting(breaks: &[f64], x: Interval) -> std::ops::Range<usize> {
     inner.partition_point(|&b| b < x.inf())..inner.partition_point(|&b| b <= x.sup()) + 1
 }
 
+/// The piecewise system `G` of the module docs for one ray: on each piece's
+/// extended rectangle, the piece's reduced system.
+struct KnotLineSystem<'a> {
+    surface: &'a BsplineSurface,
+    planes: &'a Planes,
+}
+
+impl Piecewise for KnotLineSystem<'_> {
+    type P = TensorBezier<Interval>;
+
+    fn pieces(&self, x: IBox) -> Option<Vec<Piece<Self::P>>> {
+        meeting(self.surface, x)
+            .map(|piece| reduced(piece, self.planes))
+            .collect()
+    }
+}
+
 /// One piece's reduced system `F_k = (n₁·(X − W o), n₂·(X − W o))` on its
 /// rectangle in knot parameters, with its Jacobian.
-struct PieceSystem {
-    f: [TensorBezier<Interval>; 2],
-    jac: [TensorBezier<Interval>; 4],
-}
-
-impl PieceSystem {
-    fn of(piece: &BezierPiece, planes: &Planes) -> Option<Self> {
-        let (m, n) = piece.hom[3].degree();
-        let (du, dv) = piece.hom[3].domain();
-        let cols: [&[Interval]; 4] = std::array::from_fn(|c| piece.hom[c].coeffs());
-        let f = [0, 1].map(|k| {
-            let coeffs = (0..cols[3].len())
-                .map(|i| {
-                    (0..3).fold(point(0.0), |acc, c| {
-                        acc + planes.n[k][c] * (cols[c][i] - cols[3][i] * planes.o[c])
-                    })
+fn reduced(piece: &BezierPiece, planes: &Planes) -> Option<Piece<TensorBezier<Interval>>> {
+    let (m, n) = piece.hom[3].degree();
+    let (du, dv) = piece.hom[3].domain();
+    let cols: [&[Interval]; 4] = std::array::from_fn(|c| piece.hom[c].coeffs());
+    let f = [0, 1].map(|k| {
+        let coeffs = (0..cols[3].len())
+            .map(|i| {
+                (0..3).fold(point(0.0), |acc, c| {
+                    acc + planes.n[k][c] * (cols[c][i] - cols[3][i] * planes.o[c])
                 })
-                .collect();
-            TensorBezier::new(m, n, coeffs, *du, *dv).ok()
-        });
-        let [Some(f0), Some(f1)] = f else { return None };
-        let jac = [
-            f0.deriv(Direction::U),
-            f0.deriv(Direction::V),
-            f1.deriv(Direction::U),
-            f1.deriv(Direction::V),
-        ];
-        Some(Self { f: [f0, f1], jac })
-    }
-}
-
-/// What a Krawczyk step on `G` proves about a box.
-enum Verdict {
-    Unique(IBox),
-    NoRoot,
-    Undecided(IBox),
-}
-
-/// One step of the operator `K` of the module docs: `G(x̃)` enclosed by the
-/// hull over the pieces holding `x̃`, `J_k(X)` for every piece meeting `X`
-/// (over all of `X`), `Y ≈ (mid hull J_k)⁻¹` — the midpoint of the hull, not
-/// one piece's Jacobian, as the pieces' Jacobians may differ by a large
-/// factor across a knot line (spans of different lengths).
-fn krawczyk_step(surface: &BsplineSurface, planes: &Planes, x: IBox) -> Verdict {
-    let mid = [x[0].mid(), x[1].mid()];
-    if !(mid[0].is_finite() && mid[1].is_finite()) {
-        return Verdict::Undecided(x);
-    }
-    let xm = mid.map(point);
-    let hull2 = |a: [Interval; 2], b: [Interval; 2]| [a[0].convex_hull(b[0]), a[1].convex_hull(b[1])];
-    let mut gx = [Interval::EMPTY; 2];
-    for piece in meeting(surface, xm) {
-        let Some(sys) = PieceSystem::of(piece, planes) else {
-            return Verdict::Undecided(x);
-        };
-        gx = hull2(gx, sys.f.each_ref().map(|f| f.eval(xm[0], xm[1])));
-    }
-    let mut jacobians = Vec::new();
-    for piece in meeting(surface, x) {
-        let Some(sys) = PieceSystem::of(piece, planes) else {
-            return Verdict::Undecided(x);
-        };
-        jacobians.push(sys.jac.each_ref().map(|p| p.eval(x[0], x[1])));
-    }
-    let j = jacobians.iter().fold([Interval::EMPTY; 4], |acc, jk| {
-        std::array::from_fn(|i| acc[i].convex_hull(jk[i]))
+            })
+            .collect();
+        TensorBezier::new(m, n, coeffs, *du, *dv).ok()
     });
-    let Some(y) = inverse2(j.map(|c| c.mid())) else {
-        return Verdict::Undecided(x);
-    };
-    let y = y.map(point);
-    let yg = [y[0] * gx[0] + y[1] * gx[1], y[2] * gx[0] + y[3] * gx[1]];
-    let dx = [x[0] - xm[0], x[1] - xm[1]];
-    let one = point(1.0);
-    let spread = jacobians.iter().fold([Interval::EMPTY; 2], |acc, jk| {
-        let m = [
-            one - (y[0] * jk[0] + y[1] * jk[2]),
-            -(y[0] * jk[1] + y[1] * jk[3]),
-            -(y[2] * jk[0] + y[3] * jk[2]),
-            one - (y[2] * jk[1] + y[3] * jk[3]),
-        ];
-        hull2(acc, [m[0] * dx[0] + m[1] * dx[1], m[2] * dx[0] + m[3] * dx[1]])
-    });
-    let k = [xm[0] - yg[0] + spread[0], xm[1] - yg[1] + spread[1]];
-    if k.iter().any(|c| c.is_empty()) {
-        return Verdict::Undecided(x);
-    }
-    if k[0].interior(x[0]) && k[1].interior(x[1]) {
-        return Verdict::Unique(k);
-    }
-    let meet = [k[0].intersection(x[0]), k[1].intersection(x[1])];
-    if meet[0].is_empty() || meet[1].is_empty() {
-        Verdict::NoRoot
-    } else {
-        Verdict::Undecided(meet)
-    }
-}
-
-/// Proves that `G` has exactly one zero in a box containing `x0` and returns
-/// a box holding it (epsilon-inflation as in the solver's certification:
-/// every box tried contains `x0`), or `None`.
-fn certify_piecewise(surface: &BsplineSurface, planes: &Planes, x0: IBox) -> Option<IBox> {
-    let mut x = x0.map(|c| inflate(c, 0.1));
-    for _ in 0..10 {
-        match krawczyk_step(surface, planes, x) {
-            Verdict::Unique(mut k) => {
-                // Each further K(K) ⊂ int K is proven to hold the same zero.
-                for _ in 0..8 {
-                    match krawczyk_step(surface, planes, k) {
-                        Verdict::Unique(next) if width(next) < width(k) => k = next,
-                        _ => break,
-                    }
-                }
-                return Some(k);
-            }
-            Verdict::NoRoot => return None,
-            Verdict::Undecided(k) => x = [0, 1].map(|i| inflate(k[i].convex_hull(x0[i]), 1.0)),
-        }
-    }
-    None
-}
-
-fn width(x: IBox) -> f64 {
-    x[0].wid().max(x[1].wid())
-}
-
-/// `x` widened by `rel` of its width plus a few ulps on each side.
-fn inflate(x: Interval, rel: f64) -> Interval {
-    let r = rel * x.wid() + 4.0 * f64::EPSILON * x.mag().max(f64::MIN_POSITIVE);
-    interval((x.inf() - r).next_down(), (x.sup() + r).next_up())
-}
-
-fn inverse2(m: [f64; 4]) -> Option<[f64; 4]> {
-    let det = m[0] * m[3] - m[1] * m[2];
-    let scale = (m[0].abs() + m[1].abs()) * (m[2].abs() + m[3].abs());
-    if det == 0.0 || !det.is_finite() || det.abs() < 1e-14 * scale {
-        return None;
-    }
-    Some([m[3] / det, -m[1] / det, -m[2] / det, m[0] / det])
+    let [Some(f0), Some(f1)] = f else { return None };
+    Some(Piece::new(f0, f1))
 }

@@ -30,7 +30,7 @@
 //! Bézier clipping of one equation at a time needs the curves roughly
 //! aligned with the axes.
 
-use super::{at, Shape, STACK};
+use super::net::{at, Shape, STACK};
 use crate::scalar::iv::Iv;
 
 /// The result of [`fat_line_spans`].

@@ -37,9 +37,9 @@
 //! conic band transversally at a simple root.
 
 use super::fatline::{FatLineClip, Strip};
-use super::{at, Shape, STACK};
+use super::net::{at, Shape, STACK};
 use crate::scalar::iv::{down, up, Iv};
-use crate::solve::method::{gauss, Pivoting};
+use crate::solve::linalg::{gauss, Pivoting};
 
 /// A fat conic `|q(s, t)| ≤ δ`, `q = A + B s + C t + D s² + E s t + F t²`.
 #[derive(Clone, Copy, Debug)]

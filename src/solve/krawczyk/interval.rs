@@ -1,23 +1,17 @@
-//! Krawczyk's interval Newton operator: existence, uniqueness and exclusion
-//! proofs for a root of `F = (f, g)` in a box.
-//!
-//! # Definition
-//! For a box `X`, `x̃ = mid X`, `Y ≈ F'(x̃)⁻¹` (any real matrix, computed in
-//! f64) and an interval enclosure `F'(X)` of the Jacobian over `X`:
-//! ```text
-//! K(X) = x̃ − Y F(x̃) + (I − Y F'(X)) (X − x̃)
-//! ```
-//! * `K(X) ⊂ int X` ⟹ `F` has exactly one zero in `X`, it lies in `K(X)`, and
-//!   it is simple (`F'` is non-singular there) — Krawczyk 1969, Rump 1983.
-//! * `K(X) ∩ X = ∅` ⟹ `F` has no zero in `X` (every zero in `X` lies in `K(X)`).
+//! Krawczyk's operator in inari interval arithmetic on a system `(f, g)` of
+//! any [`Bivariate`] polynomials (triangular and tensor BB): the
+//! certification of the solvers' leaves, the probes of the triangle
+//! iteration, and the merging of certified boxes.
 //!
 //! Everything is evaluated with outward rounding (inari), on the system's
 //! interval coefficients, so the verdicts hold for every polynomial system in
 //! the coefficient enclosures.
 
-use super::num::{Geo, GeoIv};
+use super::verdict::{IBox, Verdict};
 use crate::poly::{Direction, TensorBezier, TriBezier};
 use crate::scalar::point;
+use crate::solve::linalg::inverse2;
+use crate::solve::num::{Geo, GeoIv};
 use inari::Interval;
 
 /// A bivariate polynomial the Krawczyk operator can work on: evaluated in
@@ -78,9 +72,6 @@ struct Step {
     floor: f64,
 }
 
-/// A 2-D box `[u, v]`.
-pub type IBox = [Interval; 2];
-
 /// The system `F = (f, g)` with its Jacobian, as BB polynomials in the
 /// coordinates the boxes are given in (triangular polynomials are evaluated by
 /// de Casteljau at barycentric `(u, v, 1 − u − v)`, tensor ones row by row;
@@ -96,19 +87,6 @@ pub struct System<P: Bivariate = TriBezier<Interval>> {
     /// `f` and `g` with midpoint coefficients, for the `f64` Newton steps of
     /// [`System::contract`].
     value_mid: [P::Mid; 2],
-}
-
-/// What a Krawczyk step proves about a box.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Verdict {
-    /// Exactly one root in the box, simple, and it lies in the given
-    /// sub-box `K(X)`.
-    Unique(IBox),
-    /// No root in the box.
-    NoRoot,
-    /// Neither could be proven; the root set within the box lies in the given
-    /// enclosure `K(X) ∩ X`.
-    Undecided(IBox),
 }
 
 impl<P: Bivariate> System<P> {
@@ -171,7 +149,7 @@ impl<P: Bivariate> System<P> {
         let fx = self.value(xm).map(GeoIv::of);
         let j = jac.unwrap_or_else(|| self.jac.each_ref().map(|p| GeoIv::of(Self::eval(p, x))));
         let jm = self.jac_mid.each_ref().map(|p| P::mid_value(p, mid[0], mid[1]));
-        let Some(y) = inverse2(jm) else {
+        let Some(y) = inverse2(jm, 1e-14) else {
             return undecided(Some(j));
         };
         let y = y.map(GeoIv::pt);
@@ -333,7 +311,7 @@ impl<P: Bivariate> System<P> {
         for _ in 0..4 {
             let f = self.value_mid.each_ref().map(|p| P::mid_value(p, x[0], x[1]));
             let j = self.jac_mid.each_ref().map(|p| P::mid_value(p, x[0], x[1]));
-            let y = inverse2(j)?;
+            let y = inverse2(j, 1e-14)?;
             let dx = [y[0] * f[0] + y[1] * f[1], y[2] * f[0] + y[3] * f[1]];
             x = [x[0] - dx[0], x[1] - dx[1]];
             if !(x[0].is_finite() && x[1].is_finite()) {
@@ -383,18 +361,9 @@ pub fn width(x: IBox) -> f64 {
 }
 
 /// `x` widened by `rel` of its width plus a few ulps on each side.
-fn inflate(x: Interval, rel: f64) -> Interval {
+pub(super) fn inflate(x: Interval, rel: f64) -> Interval {
     let r = rel * x.wid() + 4.0 * f64::EPSILON * x.mag().max(f64::MIN_POSITIVE);
     crate::scalar::interval((x.inf() - r).next_down(), (x.sup() + r).next_up())
-}
-
-fn inverse2(m: [f64; 4]) -> Option<[f64; 4]> {
-    let det = m[0] * m[3] - m[1] * m[2];
-    let scale = (m[0].abs() + m[1].abs()) * (m[2].abs() + m[3].abs());
-    if det == 0.0 || !det.is_finite() || det.abs() < 1e-14 * scale {
-        return None;
-    }
-    Some([m[3] / det, -m[1] / det, -m[2] / det, m[0] / det])
 }
 
 #[cfg(test)]

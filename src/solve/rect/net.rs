@@ -1,0 +1,124 @@
+//! A box of the box solver and its Bernstein net: the layout of the
+//! coefficients of every polynomial on the box, and what is read off them
+//! directly (signs, derivative hulls, enclosures over sub-boxes).
+
+use crate::scalar::interval;
+use crate::scalar::iv::Iv;
+use crate::solve::krawczyk::IBox;
+
+/// Scratch arrays on the stack hold this many coefficients per line; higher
+/// degrees skip the hull clip and the local Krawczyk test (they still split,
+/// and leaves are certified globally). The ray front end allows degree ≤ 20.
+pub(super) const STACK: usize = 24;
+
+/// The layout of a box's coefficients: `polys` polynomials of bidegree
+/// `(m, n)`, `len` coefficients each, row-major, one after the other.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Shape {
+    pub(super) m: usize,
+    pub(super) n: usize,
+    pub(super) len: usize,
+    pub(super) polys: usize,
+}
+
+impl Shape {
+    /// The system `f, g` of bidegree `(m, n)`.
+    pub(super) fn pair(m: usize, n: usize) -> Self {
+        Shape {
+            m,
+            n,
+            len: (m + 1) * (n + 1),
+            polys: 2,
+        }
+    }
+}
+
+/// Index of coefficient `(i, j)`.
+#[inline]
+pub(super) fn at(sh: Shape, i: usize, j: usize) -> usize {
+    i * (sh.n + 1) + j
+}
+
+/// The indices of the coefficients on one edge: `d = 0` the rows `i = 0`
+/// (`high = false`) or `i = m`, `d = 1` the columns `j = 0` or `j = n`.
+pub(super) fn edge_indices(sh: Shape, d: usize, high: bool) -> impl Iterator<Item = usize> {
+    let (count, fixed) = if d == 0 {
+        (sh.n + 1, if high { sh.m } else { 0 })
+    } else {
+        (sh.m + 1, if high { sh.n } else { 0 })
+    };
+    (0..count).map(move |k| if d == 0 { at(sh, fixed, k) } else { at(sh, k, fixed) })
+}
+
+/// Every coefficient is strictly positive, or every one strictly negative:
+/// no zero on the box (the Bernstein basis is a positive partition of unity).
+pub(super) fn one_signed(c: &[Iv]) -> bool {
+    c.iter().all(|x| x.lo > 0.0) || c.iter().all(|x| x.hi < 0.0)
+}
+
+/// A box: the coefficients of every polynomial on it, its endpoints (each an
+/// enclosure), its trace index.
+#[derive(Clone, Debug)]
+pub(super) struct Node {
+    pub(super) c: Vec<Iv>,
+    pub(super) bx: [[Iv; 2]; 2],
+    pub(super) id: u32,
+}
+
+impl Node {
+    pub(super) fn outer(&self) -> [[f64; 2]; 2] {
+        self.bx.map(|[lo, hi]| [lo.lo, hi.hi])
+    }
+
+    pub(super) fn ibox(&self) -> IBox {
+        self.outer().map(|[lo, hi]| interval(lo, hi))
+    }
+}
+
+/// Hulls of `∂p/∂s` and `∂p/∂t` over the box, from the derivative's
+/// Bernstein coefficients.
+pub(super) fn jacobian_row(p: &[Iv], sh: Shape) -> [Iv; 2] {
+    let mut ds: Option<Iv> = None;
+    let mut dt: Option<Iv> = None;
+    for i in 0..=sh.m {
+        for j in 0..=sh.n {
+            let c = p[at(sh, i, j)];
+            if i < sh.m {
+                let x = p[at(sh, i + 1, j)].sub(c);
+                ds = Some(ds.map_or(x, |h| h.hull(x)));
+            }
+            if j < sh.n {
+                let x = p[at(sh, i, j + 1)].sub(c);
+                dt = Some(dt.map_or(x, |h| h.hull(x)));
+            }
+        }
+    }
+    let z = Iv::point(0.0);
+    [ds.unwrap_or(z).scale(sh.m as f64), dt.unwrap_or(z).scale(sh.n as f64)]
+}
+
+/// An enclosure of the polynomial with row-major coefficients `p` of
+/// bidegree `(m, n)` over the local box `s × t` (any floats, extrapolation
+/// included), by de Casteljau with [`Iv::lerp_range`].
+pub(crate) fn eval_box(p: &[Iv], m: usize, n: usize, s: [f64; 2], t: [f64; 2]) -> Iv {
+    if m >= STACK || n >= STACK {
+        return Iv::new(f64::NEG_INFINITY, f64::INFINITY);
+    }
+    let mut col = [Iv::point(0.0); STACK];
+    let mut row = [Iv::point(0.0); STACK];
+    for (i, line) in p.chunks(n + 1).enumerate() {
+        row[..=n].copy_from_slice(line);
+        for k in 1..=n {
+            for j in 0..=n - k {
+                row[j] = Iv::lerp_range(row[j], row[j + 1], t[0], t[1]);
+            }
+        }
+        col[i] = row[0];
+    }
+    for k in 1..=m {
+        for i in 0..=m - k {
+            col[i] = Iv::lerp_range(col[i], col[i + 1], s[0], s[1]);
+        }
+    }
+    col[0]
+}

@@ -1,0 +1,735 @@
+//! The box solver's runner: options and results, the entry points, and the
+//! depth-first loop over boxes that applies the steps of the [`rect`](super)
+//! docs to each box.
+
+use super::fatline::{fat_line_spans, FatLineClip};
+use super::hybrid::hybrid_spans;
+use super::net::{edge_indices, eval_box, one_signed, Node, Shape};
+use super::proof::{local_krawczyk, sign_lost};
+use super::spans::{clip, hull_spans, keep_aspect, preconditioned_spans, split};
+use crate::error::{Error, Result};
+use crate::poly::TensorBezier;
+use crate::scalar::interval;
+use crate::scalar::iv::Iv;
+use crate::solve::driver::VANISHING;
+use crate::solve::krawczyk::{IBox, System, Verdict};
+use crate::solve::regions::{merge_roots, overlaps, undecided_clusters, Found};
+use crate::solve::solution::{Box2, Cluster, Leftover, Root, Solution, Stats, UndecidedReason};
+use inari::Interval;
+
+/// What the caller wants from the roots, ordered by an objective `k` (for
+/// rays: `t`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+#[non_exhaustive]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "snake_case")
+)]
+pub enum Query {
+    /// Every root.
+    #[default]
+    All,
+    /// The roots of smallest objective: boxes are explored depth first, the
+    /// child with the smaller objective bound first, and once a root is
+    /// certified every box whose objective is provably above its upper bound
+    /// is dropped (bounds by interval evaluation over the box, computed only
+    /// then: the objective is not carried through the subdivision).
+    Nearest,
+    /// Any one certified root with `k ≥ k_min`: the search stops at the first.
+    Any,
+}
+
+/// How a box is clipped (step 4 of the [`rect`](super) docs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum RectClip {
+    /// Bézier clipping (Nishita, Sederberg & Kakimoto 1990): the convex hull
+    /// of each equation's control points projected on each axis.
+    #[default]
+    Bezier,
+    /// Fat lines (linear clipping on boxes; see `src/solve/rect/fatline.rs`): a rigorous
+    /// strip around each equation's least-squares plane, the box cut to the
+    /// parallelogram where both strips meet. Falls back to Bézier hulls
+    /// where the strips are parallel within rounding.
+    FatLine,
+    /// Hybrid clipping on boxes (see `src/solve/rect/hybrid.rs`): a fat line
+    /// for `f` and a fat conic for `g`, the box cut to the extremes of the
+    /// region where the strip meets the conic band (vertices and tangencies,
+    /// enclosed in interval arithmetic). Falls back to Bézier hulls where
+    /// an enclosure is not possible.
+    Hybrid,
+}
+
+/// Options of [`solve_rect`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RectOptions {
+    /// Boxes narrower than `eps` (relative to the domain's sides) become
+    /// leaves; see the [`rect`](super) docs.
+    pub eps: f64,
+    /// Boxes processed before the run stops with `complete = false`.
+    pub max_boxes: usize,
+    /// All roots, the nearest, or any.
+    pub query: Query,
+    /// Drop regions where the objective is provably below this value.
+    pub key_min: Option<f64>,
+    /// The clipping method.
+    pub clip: RectClip,
+}
+
+impl Default for RectOptions {
+    fn default() -> Self {
+        Self {
+            eps: 1e-12,
+            max_boxes: 50_000,
+            query: Query::All,
+            key_min: None,
+            clip: RectClip::default(),
+        }
+    }
+}
+
+/// An objective `k = num/den` over the domain, with `den > 0` on it.
+#[derive(Clone, Copy, Debug)]
+pub struct Objective<'a> {
+    /// The numerator.
+    pub num: &'a TensorBezier<Interval>,
+    /// The denominator (`1` if absent); its coefficients must be positive.
+    pub den: Option<&'a TensorBezier<Interval>>,
+}
+
+/// The result of [`solve_rect`].
+///
+/// # Contract
+/// The [`Solution`] contract, with these amendments for the queries:
+/// * [`Query::All`]: as stated there (with `key_min`: for the roots where the
+///   objective is `≥ key_min`; roots with a smaller objective may or may not
+///   be returned).
+/// * [`Query::Nearest`]: `complete = true` means every root whose objective
+///   is at most the smallest certified upper bound `k*` (over roots with
+///   objective provably `≥ key_min`) lies in a returned region; regions whose
+///   objective is provably above `k*` were not explored.
+/// * [`Query::Any`]: if `stopped_early`, the first certified root is returned
+///   and nothing is claimed about the rest.
+#[derive(Clone, Debug)]
+pub struct RectSolution {
+    /// Roots, clusters, leftovers and counters.
+    pub solution: Solution,
+    /// [`Query::Any`] found its root and stopped.
+    pub stopped_early: bool,
+}
+
+/// Boxes at most this wide (relative) get a local Krawczyk test.
+const KRAWCZYK_BELOW: f64 = 0.125;
+
+/// A certified box narrower than this (relative to the box it was proven
+/// in) is reported; a wider one is clipped to it and certified again.
+const REPORT_BELOW: f64 = 1e-12;
+
+/// Stalled boxes narrower than this (relative) are not split but handed to
+/// the leaf test (see [`Runner::step`]).
+const SINGULAR_FLOOR: f64 = 1e-9;
+
+/// The relative width of the strip cut along an edge where both equations
+/// may vanish ([`Runner::cut_vanishing_edges`]): `2⁻³⁰`, so that `1 − EDGE_STRIP`
+/// is exact.
+const EDGE_STRIP: f64 = 1.0 / (1u64 << 30) as f64;
+
+/// Stalled boxes below this (relative) size whose separating sign is lost
+/// to rounding are leaves ([`sign_lost`]).
+const LOST_BELOW: f64 = 1e-3;
+
+/// Coefficients beyond this magnitude are rejected (keeps every difference
+/// of two coefficients finite, which the hull crossings rely on).
+const MAX_MAGNITUDE: f64 = 1e300;
+
+/// Solves `f = g = 0` on the domain of `f` (a rectangle) by Bézier clipping on
+/// boxes; see the [`rect`](super) docs for the method and [`RectSolution`] for what
+/// the result guarantees.
+///
+/// Errors: different domains, an equation whose coefficients all contain 0
+/// (it may be identically zero: [`Error::Degenerate`]), non-finite or huge
+/// coefficients ([`Error::NonFinite`]), a bad `eps`.
+///
+/// ```
+/// use rootclip::poly::TensorBezier;
+/// use rootclip::internals::rect::{solve_rect, RectOptions};
+/// use rootclip::internals::point;
+/// // f = s − ¼, g = t − ¾ on the unit square (bidegree (1, 1)).
+/// let f = TensorBezier::on_unit_square(1, 1, [-0.25, -0.25, 0.75, 0.75].map(point).to_vec()).unwrap();
+/// let g = TensorBezier::on_unit_square(1, 1, [-0.75, 0.25, -0.75, 0.25].map(point).to_vec()).unwrap();
+/// let r = solve_rect(&f, &g, None, &RectOptions::default()).unwrap().solution;
+/// assert!(r.complete && r.roots.len() == 1 && r.roots[0].bx.contains(0.25, 0.75));
+/// ```
+pub fn solve_rect(
+    f: &TensorBezier<Interval>,
+    g: &TensorBezier<Interval>,
+    objective: Option<Objective<'_>>,
+    opts: &RectOptions,
+) -> Result<RectSolution> {
+    let (du, dv) = f.domain();
+    let same = |p: &TensorBezier<Interval>| {
+        let (a, b) = p.domain();
+        a == du && b == dv
+    };
+    if !same(g) || objective.is_some_and(|o| !same(o.num) || o.den.is_some_and(|d| !same(d))) {
+        return Err(Error::Shape(
+            "the system and the objective must share one rectangle".into(),
+        ));
+    }
+    let (mf, nf) = f.degree();
+    let (mg, ng) = g.degree();
+    let mut m = mf.max(mg).max(1);
+    let mut n = nf.max(ng).max(1);
+    if let Some(o) = objective {
+        m = m.max(o.num.degree().0);
+        n = n.max(o.num.degree().1);
+        if let Some(d) = o.den {
+            m = m.max(d.degree().0);
+            n = n.max(d.degree().1);
+        }
+    }
+    let lift = |p: &TensorBezier<Interval>| -> Result<Vec<Iv>> {
+        let e = if p.degree() == (m, n) {
+            p.clone()
+        } else {
+            p.elevate(m, n)?
+        };
+        Ok(e.coeffs().iter().map(|c| Iv::new(c.inf(), c.sup())).collect())
+    };
+    let iv = |x: &Interval| Iv::new(x.inf(), x.sup());
+    let problem = RectProblem {
+        m,
+        n,
+        domain: [[iv(&du[0]), iv(&du[1])], [iv(&dv[0]), iv(&dv[1])]],
+        f: lift(f)?,
+        g: lift(g)?,
+        num: objective.map(|o| lift(o.num)).transpose()?,
+        den: objective.and_then(|o| o.den).map(lift).transpose()?,
+    };
+    solve_rect_iv(problem, opts)
+}
+
+/// The input of [`solve_rect_iv`]: the system (and objective) as [`Iv`]
+/// coefficient enclosures of one bidegree `(m, n)`, row-major, on `domain`
+/// (each endpoint an enclosure of the exact one).
+#[derive(Clone, Debug)]
+pub(crate) struct RectProblem {
+    pub(crate) m: usize,
+    pub(crate) n: usize,
+    pub(crate) domain: [[Iv; 2]; 2],
+    pub(crate) f: Vec<Iv>,
+    pub(crate) g: Vec<Iv>,
+    pub(crate) num: Option<Vec<Iv>>,
+    pub(crate) den: Option<Vec<Iv>>,
+}
+
+/// [`solve_rect`] on [`Iv`] coefficients (the ray front end's fast path).
+pub(crate) fn solve_rect_iv(p: RectProblem, opts: &RectOptions) -> Result<RectSolution> {
+    if !(opts.eps > 0.0 && opts.eps < 1.0) {
+        return Err(Error::Shape(format!("eps must lie in (0, 1), got {}", opts.eps)));
+    }
+    let (m, n) = (p.m, p.n);
+    let len = (m + 1) * (n + 1);
+    if m == 0 || n == 0 {
+        return Err(Error::Shape("the rectangle solver needs bidegree ≥ (1, 1)".into()));
+    }
+    let parts = [Some(&p.f), Some(&p.g), p.num.as_ref(), p.den.as_ref()];
+    for c in parts.into_iter().flatten() {
+        if c.len() != len {
+            return Err(Error::Shape(format!(
+                "bidegree ({m}, {n}) needs {len} coefficients, got {}",
+                c.len()
+            )));
+        }
+        if let Some(x) = c
+            .iter()
+            .find(|x| !(x.lo.abs() <= MAX_MAGNITUDE && x.hi.abs() <= MAX_MAGNITUDE && x.lo <= x.hi))
+        {
+            return Err(Error::NonFinite(format!(
+                "coefficient [{}, {}] is not finite or beyond 1e300",
+                x.lo, x.hi
+            )));
+        }
+    }
+    if !p.domain.iter().flatten().all(|x| x.is_finite()) || !(0..2).all(|a| p.domain[a][0].hi < p.domain[a][1].lo) {
+        return Err(Error::Shape("the rectangle must be finite and non-empty".into()));
+    }
+    for (name, c) in [("f", &p.f), ("g", &p.g)] {
+        if c.iter().all(|x| x.lo <= 0.0 && x.hi >= 0.0) {
+            return Err(Error::Degenerate(format!(
+                "every coefficient of {name} contains 0: it may vanish identically"
+            )));
+        }
+    }
+    if p.den
+        .as_ref()
+        .is_some_and(|d| d.iter().any(|x| x.lo.is_nan() || x.lo <= 0.0))
+    {
+        return Err(Error::Degenerate("the objective's denominator must be positive".into()));
+    }
+    // The objective is not carried through the subdivision: it is bounded
+    // over a box only where a query needs it (a certified root; a box that
+    // Nearest might prune), from the domain's coefficients.
+    let shape = Shape::pair(m, n);
+    let mut buf = Vec::with_capacity(shape.polys * len);
+    buf.extend_from_slice(&p.f);
+    buf.extend_from_slice(&p.g);
+    if let (Some(num), Some(k_min)) = (&p.num, opts.key_min) {
+        // k = num/den with den > 0: k < k_min everywhere if every ratio is.
+        let below = match &p.den {
+            Some(den) => num.iter().zip(den).all(|(a, d)| a.div(*d).hi < k_min),
+            None => num.iter().all(|a| a.hi < k_min),
+        };
+        if below {
+            return Ok(RectSolution {
+                solution: Solution {
+                    complete: true,
+                    roots: Vec::new(),
+                    clusters: Vec::new(),
+                    leftovers: Vec::new(),
+                    stats: Stats::default(),
+                },
+                stopped_early: false,
+            });
+        }
+    }
+    let domain = p.domain;
+    let mut run = Runner {
+        shape,
+        opts: *opts,
+        scale: domain.map(|[lo, hi]| (hi.hi - lo.lo).next_up()),
+        stats: Stats::default(),
+        trace: Vec::new(),
+        found: Vec::new(),
+        undecided: Vec::new(),
+        problem: p,
+        global: None,
+        best: f64::INFINITY,
+        stopped_early: false,
+        edge_strips: Vec::new(),
+    };
+    let mut first = Node {
+        c: buf,
+        bx: domain,
+        id: run.push_trace(u32::MAX, domain.map(|[lo, hi]| [lo.lo, hi.hi])),
+    };
+    run.cut_vanishing_edges(&mut first);
+    let leftovers = run.drive(first);
+    Ok(run.finish(leftovers))
+}
+
+struct Runner {
+    shape: Shape,
+    opts: RectOptions,
+    /// The domain's side lengths (widths are compared relative to them).
+    scale: [f64; 2],
+    stats: Stats,
+    /// `(parent, diameter)` per box, for [`Root::diameters`].
+    trace: Vec<(u32, f64)>,
+    found: Vec<Found>,
+    undecided: Vec<Found>,
+    problem: RectProblem,
+    /// The whole system in domain coordinates, built on first use.
+    global: Option<System<TensorBezier<Interval>>>,
+    /// Smallest certified upper bound of the objective (for Nearest).
+    best: f64,
+    stopped_early: bool,
+    /// Strips cut along edges where both equations may vanish.
+    edge_strips: Vec<IBox>,
+}
+
+enum Step {
+    Done,
+    Continue(Node),
+    Split(Node, Node),
+}
+
+impl Runner {
+    fn push_trace(&mut self, parent: u32, outer: [[f64; 2]; 2]) -> u32 {
+        let diam = (outer[0][1] - outer[0][0]).hypot(outer[1][1] - outer[1][0]);
+        self.trace.push((parent, diam));
+        (self.trace.len() - 1) as u32
+    }
+
+    fn diameters(&self, mut id: u32) -> Vec<f64> {
+        let mut out = Vec::new();
+        while id != u32::MAX {
+            let (parent, d) = self.trace[id as usize];
+            out.push(d);
+            id = parent;
+        }
+        out.reverse();
+        out
+    }
+
+    fn rel_width(&self, node: &Node) -> [f64; 2] {
+        let o = node.outer();
+        [(o[0][1] - o[0][0]) / self.scale[0], (o[1][1] - o[1][0]) / self.scale[1]]
+    }
+
+    /// The main loop, depth first; returns the boxes a budget left.
+    fn drive(&mut self, first: Node) -> Vec<Node> {
+        let mut queue = vec![first];
+        while let Some(node) = queue.pop() {
+            if self.stopped_early {
+                break;
+            }
+            if self.stats.run.boxes >= self.opts.max_boxes {
+                queue.push(node);
+                return queue;
+            }
+            self.stats.run.boxes += 1;
+            match self.step(node) {
+                Step::Done => {}
+                Step::Continue(n) => queue.push(n),
+                Step::Split(a, b) => {
+                    // Nearest: the child nearer in the objective first, so
+                    // that a near root is certified early and prunes the rest.
+                    let swap =
+                        self.opts.query == Query::Nearest && self.key_over(b.ibox()).0 < self.key_over(a.ibox()).0;
+                    let (a, b) = if swap { (b, a) } else { (a, b) };
+                    queue.push(b);
+                    queue.push(a);
+                }
+            }
+        }
+        Vec::new()
+    }
+
+    fn step(&mut self, mut node: Node) -> Step {
+        let sh = self.shape;
+        let (f, rest) = node.c.split_at(sh.len);
+        let g = &rest[..sh.len];
+        if one_signed(f) || one_signed(g) {
+            self.stats.run.sign_exclusions += 1;
+            return Step::Done;
+        }
+        // Nearest: once a root is certified, a box whose objective is
+        // provably above it cannot hold a nearer root.
+        if self.opts.query == Query::Nearest && self.best < f64::INFINITY && self.key_over(node.ibox()).0 > self.best {
+            self.stats.run.sign_exclusions += 1;
+            return Step::Done;
+        }
+        let w = self.rel_width(&node);
+        if w[0].max(w[1]) <= KRAWCZYK_BELOW {
+            self.stats.krawczyk_calls += 1;
+            match local_krawczyk(&node.c, sh) {
+                Verdict::Unique(k) => {
+                    let bx = [0, 1].map(|a| {
+                        let [lo, hi] = node.bx[a];
+                        let x = Iv::lerp_range(lo, hi, k[a].lo, k[a].hi);
+                        interval(x.lo, x.hi)
+                    });
+                    let narrow = (0..2).all(|a| bx[a].wid() <= self.opts.eps * self.scale[a]);
+                    if narrow || k[0].wid().max(k[1].wid()) <= REPORT_BELOW {
+                        self.add_root(bx, node.id);
+                        return Step::Done;
+                    }
+                    // The only root of the box lies in K ⊂ int box: go on
+                    // with K widened by half its width on each side (so the
+                    // root stays inside, away from the new edges), where J
+                    // is tighter — if that at least halves the box; a wide K
+                    // (J still loose) is left to the clips below instead.
+                    let spans = k.map(|c| {
+                        let r = 0.5 * (c.hi - c.lo);
+                        ((c.lo - r).max(0.0), (c.hi + r).min(1.0))
+                    });
+                    if spans.iter().map(|s| s.1 - s.0).product::<f64>() <= 0.5 {
+                        for (d, &(a, b)) in spans.iter().enumerate() {
+                            clip(&mut node, sh, d, a, b);
+                        }
+                        self.stats.run.clips += 1;
+                        node.id = self.push_trace(node.id, node.outer());
+                        return Step::Continue(node);
+                    }
+                }
+                Verdict::NoRoot => {
+                    self.stats.run.probe_exclusions += 1;
+                    return Step::Done;
+                }
+                Verdict::Undecided(()) => {}
+            }
+        }
+        if w[0].max(w[1]) < self.opts.eps {
+            self.leaf(&node);
+            return Step::Done;
+        }
+        // Clip in both directions.
+        let fat = match self.opts.clip {
+            RectClip::FatLine => fat_line_spans(&node.c, sh),
+            RectClip::Hybrid => hybrid_spans(&node.c, sh),
+            RectClip::Bezier => FatLineClip::Parallel,
+        };
+        let mut spans = match fat {
+            FatLineClip::Empty => {
+                self.stats.run.clip_exclusions += 1;
+                return Step::Done;
+            }
+            FatLineClip::Spans(s) => s,
+            FatLineClip::Parallel => match hull_spans(&node.c, sh) {
+                Some(s) => s,
+                None => {
+                    self.stats.run.clip_exclusions += 1;
+                    return Step::Done;
+                }
+            },
+        };
+        // Near a simple root the hulls close in on it from both sides, and
+        // one clip can leave it within rounding of an edge, where K(X) ⊂ int X
+        // can never hold again (sub-boxes never grow back). Keep a quarter of
+        // the span's width as margin on each side, at every size, so that the
+        // Krawczyk tests below can succeed.
+        for span in spans.iter_mut() {
+            let r = 0.25 * (span.1 - span.0);
+            *span = ((span.0 - r).max(0.0), (span.1 + r).min(1.0));
+        }
+        keep_aspect(&mut spans, w);
+        let area = self.clip_to(&mut node, &spans);
+        if area <= 0.5 {
+            return Step::Continue(node);
+        }
+        // Stalled: clip again with preconditioned equations (`rect` docs).
+        match preconditioned_spans(&node.c, sh) {
+            None => {
+                self.stats.run.clip_exclusions += 1;
+                return Step::Done;
+            }
+            Some(spans) => {
+                if area * self.clip_to(&mut node, &spans) <= 0.5 {
+                    return Step::Continue(node);
+                }
+            }
+        }
+        let w = self.rel_width(&node);
+        // A stalled box below the floor is a leaf: near a multiple root the
+        // region where the coefficients' rounding hides the sign is
+        // ~√(rounding) wide, and splitting it down to `eps` would cost
+        // millions of boxes for nothing. So is one whose separating sign is
+        // lost to rounding, at any size.
+        if w[0].max(w[1]) < self.opts.eps.max(SINGULAR_FLOOR)
+            || (w[0].max(w[1]) < LOST_BELOW && sign_lost(&node.c, sh, w))
+        {
+            self.leaf(&node);
+            return Step::Done;
+        }
+        self.stats.run.splits += 1;
+        let d = usize::from(w[1] > w[0]);
+        let (mut a, mut b) = split(&node, sh, d);
+        a.id = self.push_trace(node.id, a.outer());
+        b.id = self.push_trace(node.id, b.outer());
+        Step::Split(a, b)
+    }
+
+    /// Bounds of the objective `num/den` over the box `x` (domain
+    /// coordinates), by interval de Casteljau on the domain's coefficients;
+    /// the whole line without an objective (or where the bound is not finite).
+    fn key_over(&self, x: IBox) -> (f64, f64) {
+        let p = &self.problem;
+        let Some(num) = &p.num else {
+            return (f64::NEG_INFINITY, f64::INFINITY);
+        };
+        // Local coordinates of the box, enclosed outward.
+        let local = |a: usize| {
+            let [lo, hi] = p.domain[a];
+            let w = hi.sub(lo);
+            let l = Iv::point(x[a].inf()).sub(lo).div(w);
+            let h = Iv::point(x[a].sup()).sub(lo).div(w);
+            [l.lo, h.hi]
+        };
+        let (s, t) = (local(0), local(1));
+        let k = eval_box(num, p.m, p.n, s, t);
+        let k = match &p.den {
+            Some(den) => k.div(eval_box(den, p.m, p.n, s, t)),
+            None => k,
+        };
+        if k.lo.is_nan() || k.hi.is_nan() {
+            return (f64::NEG_INFINITY, f64::INFINITY);
+        }
+        (k.lo, k.hi)
+    }
+
+    /// Clips `node` to `spans` (local coordinates; only where they cut) and
+    /// records the clip in the trace; returns the kept fraction of the area.
+    fn clip_to(&mut self, node: &mut Node, spans: &[(f64, f64); 2]) -> f64 {
+        let mut area = 1.0;
+        for (d, &(a, b)) in spans.iter().enumerate() {
+            if a > 0.0 || b < 1.0 {
+                clip(node, self.shape, d, a, b);
+                area *= b - a;
+            }
+        }
+        if area < 1.0 {
+            self.stats.run.clips += 1;
+            node.id = self.push_trace(node.id, node.outer());
+        }
+        area
+    }
+
+    /// Records a certified root (and, for the queries, bounds the objective
+    /// over its box).
+    fn add_root(&mut self, bx: IBox, id: u32) {
+        // Only a root proven to lie in the closed domain may end or prune a
+        // query: one within rounding of an edge may be a root of the
+        // polynomial's continuation past it (for a ray, a miss).
+        let d = self.problem.domain;
+        let inside = (0..2).all(|a| bx[a].inf() >= d[a][0].hi && bx[a].sup() <= d[a][1].lo);
+        if inside && self.opts.query != Query::All {
+            // (Without an objective every root counts as above the floor.)
+            let key = self.key_over(bx);
+            if self.opts.key_min.is_none_or(|m| key.0 >= m) {
+                self.best = self.best.min(key.1);
+                if self.opts.query == Query::Any {
+                    self.stopped_early = true;
+                }
+            }
+        }
+        self.found.push(Found {
+            bx,
+            diameters: self.diameters(id),
+        });
+    }
+
+    /// Cuts a strip of relative width [`EDGE_STRIP`] off every edge of the
+    /// domain along which both equations may vanish identically or nearly
+    /// (all their coefficients on that edge contain 0 or are below
+    /// [`VANISHING`] of their largest) and keeps it as an undecided
+    /// region ([`UndecidedReason::VanishingEdge`]).
+    ///
+    /// Why: if `f(0, t) ≡ g(0, t) ≡ 0` the edge is a curve of roots, and
+    /// without the cut the iteration covers it with ever smaller boxes until
+    /// the budget ends the run (a ray through the apex of a patch with a
+    /// collapsed edge does exactly this). Cutting is always sound: the strip
+    /// is reported, not discarded, and the rest is an exact sub-box solved as
+    /// usual, where `f ≈ s·∂f/∂s` is far from rounding noise.
+    fn cut_vanishing_edges(&mut self, node: &mut Node) {
+        let sh = self.shape;
+        for d in 0..2 {
+            for high in [false, true] {
+                let vanishes = (0..2).all(|p| {
+                    let c = &node.c[p * sh.len..(p + 1) * sh.len];
+                    let mag = |x: &Iv| x.lo.abs().max(x.hi.abs());
+                    let scale = c.iter().map(mag).fold(0.0, f64::max);
+                    edge_indices(sh, d, high)
+                        .all(|k| (c[k].lo <= 0.0 && c[k].hi >= 0.0) || mag(&c[k]) <= VANISHING * scale)
+                });
+                if !vanishes {
+                    continue;
+                }
+                let [lo, hi] = node.bx[d];
+                let mut strip = node.ibox();
+                if high {
+                    clip(node, sh, d, 0.0, 1.0 - EDGE_STRIP);
+                    strip[d] = interval(node.bx[d][1].lo, hi.hi);
+                } else {
+                    clip(node, sh, d, EDGE_STRIP, 1.0);
+                    strip[d] = interval(lo.lo, node.bx[d][0].hi);
+                }
+                self.edge_strips.push(strip);
+            }
+        }
+    }
+
+    /// A box below `eps` that local Krawczyk did not settle.
+    fn leaf(&mut self, node: &Node) {
+        self.stats.leaves += 1;
+        self.stats.krawczyk_calls += 1;
+        let x = node.ibox();
+        match self.system().certify(x) {
+            Verdict::Unique(k) => {
+                if k[0].disjoint(x[0]) || k[1].disjoint(x[1]) {
+                    self.stats.krawczyk_exclusions += 1;
+                } else {
+                    // The root may lie just outside this box (in a neighbour):
+                    // no objective bound from this box's coefficients then.
+                    self.add_root(k, node.id);
+                }
+            }
+            Verdict::NoRoot => self.stats.krawczyk_exclusions += 1,
+            Verdict::Undecided(_) => self.undecided.push(Found {
+                bx: x,
+                diameters: self.diameters(node.id),
+            }),
+        }
+    }
+
+    /// The whole system in domain coordinates (for leaves and merging).
+    fn system(&mut self) -> &System<TensorBezier<Interval>> {
+        let p = &self.problem;
+        self.global.get_or_insert_with(|| {
+            let tb = |c: &[Iv]| {
+                let iv = |x: &Iv| interval(x.lo, x.hi);
+                let d = p.domain.map(|[lo, hi]| [iv(&lo), iv(&hi)]);
+                TensorBezier::new(p.m, p.n, c.iter().map(iv).collect(), d[0], d[1]).expect("checked in solve_rect_iv")
+            };
+            System::new(tb(&p.f), tb(&p.g))
+        })
+    }
+
+    fn finish(mut self, left: Vec<Node>) -> RectSolution {
+        let found = std::mem::take(&mut self.found);
+        // Certified boxes that do not overlap hold distinct roots: the global
+        // system (built with inari, slow) is needed only when some do.
+        let overlapping = found
+            .iter()
+            .enumerate()
+            .any(|(i, a)| found[i + 1..].iter().any(|b| overlaps(a.bx, b.bx)));
+        let roots = if overlapping {
+            let mut stats = self.stats;
+            let (roots, undecided) = merge_roots(found, self.system(), &mut stats);
+            self.stats = stats;
+            self.undecided.extend(undecided);
+            roots
+        } else {
+            found
+        };
+        let domain = self.problem.domain;
+        let mut out = Vec::new();
+        for r in roots {
+            let x = r.bx;
+            let outside = (0..2).any(|a| x[a].sup() < domain[a][0].lo || x[a].inf() > domain[a][1].hi);
+            if outside {
+                self.stats.outside_domain += 1;
+                continue;
+            }
+            let inside = (0..2).all(|a| x[a].inf() > domain[a][0].hi && x[a].sup() < domain[a][1].lo);
+            out.push(Root {
+                u: x[0].mid(),
+                v: x[1].mid(),
+                bx: Box2::of(x),
+                on_boundary: !inside,
+                diameters: r.diameters,
+            });
+        }
+        out.sort_by(|a, b| a.u.total_cmp(&b.u).then(a.v.total_cmp(&b.v)));
+        let clusters = undecided_clusters(std::mem::take(&mut self.undecided))
+            .into_iter()
+            .chain(self.edge_strips.iter().map(|&s| Cluster {
+                bx: Box2::of(s),
+                reason: UndecidedReason::VanishingEdge,
+                diameters: Vec::new(),
+            }))
+            .collect();
+        self.stats.max_level = out
+            .iter()
+            .map(|r| r.diameters.len().saturating_sub(1))
+            .max()
+            .unwrap_or(0);
+        let leftovers: Vec<Leftover> = left
+            .iter()
+            .map(|n| Leftover {
+                bx: Box2::of(n.ibox()),
+                triangle: None,
+            })
+            .collect();
+        RectSolution {
+            solution: Solution {
+                complete: leftovers.is_empty(),
+                roots: out,
+                clusters,
+                leftovers,
+                stats: self.stats,
+            },
+            stopped_early: self.stopped_early,
+        }
+    }
+}

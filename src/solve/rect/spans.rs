@@ -1,0 +1,234 @@
+//! Clipping a box: the spans of `[0, 1]` in each direction that may hold a
+//! root (Bézier hulls, step 4 of the [`rect`](super) docs, and hulls of
+//! preconditioned combinations for stalled boxes), the widening that keeps
+//! roots off new edges, and the exact sub-boxes they become (clip, split).
+
+use super::net::{at, jacobian_row, one_signed, Node, Shape, STACK};
+use crate::scalar::iv::Iv;
+use crate::solve::linalg::{inverse2, smallest_singular_left};
+
+/// The widening of hull crossings (see the `rect` docs, step 4).
+const MARGIN: f64 = 4e-15;
+
+/// The smallest ratio of a clipped box's sides ([`keep_aspect`]).
+const MIN_ASPECT: f64 = 1e-3;
+
+/// Where boxes are split (exact, and so is `1 − SPLIT`).
+const SPLIT: f64 = 63.0 / 128.0;
+
+/// Bézier clipping of the box in both directions: the intersection of the
+/// spans of `f` and `g` (`rect` docs, step 4); `None` if it is empty.
+pub(super) fn hull_spans(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
+    let mut spans = [(0.0f64, 1.0f64); 2];
+    for (d, span) in spans.iter_mut().enumerate() {
+        for p in 0..2 {
+            let (a, b) = zero_span(&c[p * sh.len..(p + 1) * sh.len], sh, d)?;
+            *span = (span.0.max(a), span.1.min(b));
+        }
+        if span.0 > span.1 {
+            return None;
+        }
+    }
+    Some(spans)
+}
+
+/// The span of `[0, 1]` in direction `d` (0: `s`, index `i`; 1: `t`, index
+/// `j`) where the convex hull of the coefficient ranges meets zero (module
+/// docs, step 4); `None` if it provably does not.
+fn zero_span(p: &[Iv], sh: Shape, d: usize) -> Option<(f64, f64)> {
+    let (k, other) = if d == 0 { (sh.m, sh.n) } else { (sh.n, sh.m) };
+    let mut lo = [0.0f64; STACK];
+    let mut hi = [0.0f64; STACK];
+    if k >= STACK {
+        return Some((0.0, 1.0));
+    }
+    for a in 0..=k {
+        let (mut l, mut h) = (f64::INFINITY, f64::NEG_INFINITY);
+        for b in 0..=other {
+            let c = if d == 0 { p[at(sh, a, b)] } else { p[at(sh, b, a)] };
+            if !c.is_finite() {
+                return Some((0.0, 1.0));
+            }
+            l = l.min(c.lo);
+            h = h.max(c.hi);
+        }
+        if !(l.is_finite() && h.is_finite()) {
+            return Some((0.0, 1.0));
+        }
+        lo[a] = l;
+        hi[a] = h;
+    }
+    let kf = k as f64;
+    let (mut a, mut b) = (f64::INFINITY, f64::NEG_INFINITY);
+    for i in 0..=k {
+        let xi = i as f64 / kf;
+        if lo[i] <= 0.0 && hi[i] >= 0.0 {
+            a = a.min(xi);
+            b = b.max(xi);
+        }
+        for j in i + 1..=k {
+            let xj = j as f64 / kf;
+            for yi in [lo[i], hi[i]] {
+                for yj in [lo[j], hi[j]] {
+                    if (yi < 0.0 && yj > 0.0) || (yi > 0.0 && yj < 0.0) {
+                        let x = xi + (xj - xi) * (yi / (yi - yj));
+                        a = a.min(x);
+                        b = b.max(x);
+                    }
+                }
+            }
+        }
+    }
+    if a > b {
+        return None;
+    }
+    Some(((a - MARGIN).max(0.0), (b + MARGIN).min(1.0)))
+}
+
+/// Spans from equations that are combinations of `f` and `g` (every root of
+/// the system is a root of each): the rows of `Y·F` with `Y ≈ J(centre)⁻¹`,
+/// which makes the system nearly the identity so the hulls are tight, and
+/// `h = a f + b g` with `(a, b)` the left singular vector of `J` for its
+/// smallest singular value, which is nearly constant where `f = 0` and
+/// `g = 0` run (nearly) parallel — there it proves no root at once, where
+/// axis-aligned hulls of `f` and `g` would need boxes as thin as the gap.
+/// `None` when some combination proves there is no root.
+pub(super) fn preconditioned_spans(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
+    let (f, g) = (&c[..sh.len], &c[sh.len..2 * sh.len]);
+    let [a, b] = jacobian_row(f, sh);
+    let [cc, d] = jacobian_row(g, sh);
+    let j = [a, b, cc, d].map(Iv::mid);
+    if !j.iter().all(|x| x.is_finite()) {
+        return Some([(0.0, 1.0); 2]);
+    }
+    let mut combos: Vec<[f64; 2]> = Vec::with_capacity(3);
+    if let Some(y) = inverse2(j, 0.0) {
+        combos.push([y[0], y[1]]);
+        combos.push([y[2], y[3]]);
+    }
+    if let Some(v) = smallest_singular_left(j) {
+        combos.push(v);
+    }
+    let mut spans = [(0.0f64, 1.0f64); 2];
+    let mut h = vec![Iv::point(0.0); sh.len];
+    for w in combos {
+        let (wa, wb) = (Iv::point(w[0]), Iv::point(w[1]));
+        for (k, x) in h.iter_mut().enumerate() {
+            *x = wa.mul(f[k]).add(wb.mul(g[k]));
+        }
+        if one_signed(&h) {
+            return None;
+        }
+        for (dir, span) in spans.iter_mut().enumerate() {
+            let (lo, hi) = zero_span(&h, sh, dir)?;
+            *span = (span.0.max(lo), span.1.min(hi));
+            if span.0 > span.1 {
+                return None;
+            }
+        }
+    }
+    Some(spans)
+}
+
+/// Widens the kept spans so that neither side of the new box is narrower
+/// than [`MIN_ASPECT`] times the other (widths relative to the domain).
+///
+/// Why: a ray nearly along an iso-line clips one direction to ~1e-14 while
+/// the other is still ~1e-2; the collapsed side is then at the rounding
+/// floor, local Krawczyk cannot succeed, and the box ends as a leaf for the
+/// (slower) global certificate. Keeping more of a span is always sound.
+pub(super) fn keep_aspect(spans: &mut [(f64, f64); 2], w: [f64; 2]) {
+    let new = [0, 1].map(|d| (spans[d].1 - spans[d].0) * w[d]);
+    for d in 0..2 {
+        let want = MIN_ASPECT * new[1 - d];
+        if new[d] < want && w[d] > 0.0 {
+            let r = 0.5 * (want / w[d] - (spans[d].1 - spans[d].0));
+            spans[d] = ((spans[d].0 - r).max(0.0), (spans[d].1 + r).min(1.0));
+        }
+    }
+}
+
+/// Restricts the node to `[α, β]` in direction `d` (`rect` docs: exact
+/// sub-box through float split parameters).
+pub(super) fn clip(node: &mut Node, sh: Shape, d: usize, alpha: f64, beta: f64) {
+    // γ ≥ (β − α)/(1 − α), so the kept part [α, α + (1 − α)γ] ⊇ [α, β].
+    let gamma = if beta >= 1.0 {
+        1.0
+    } else {
+        ((beta - alpha).next_up() / (1.0 - alpha).next_down())
+            .next_up()
+            .min(1.0)
+    };
+    if alpha > 0.0 {
+        subdivide_all(&mut node.c, sh, d, alpha, true);
+    }
+    if gamma < 1.0 {
+        subdivide_all(&mut node.c, sh, d, gamma, false);
+    }
+    let [lo, hi] = node.bx[d];
+    // Convex combinations: the endpoint enclosures never grow wider than
+    // their parents' (plus rounding), however many clips follow.
+    let new_lo = if alpha > 0.0 { Iv::lerp(lo, hi, alpha) } else { lo };
+    let new_hi = if gamma < 1.0 { Iv::lerp(new_lo, hi, gamma) } else { hi };
+    node.bx[d] = [new_lo, new_hi];
+}
+
+/// Splits the node at [`SPLIT`] in direction `d`.
+pub(super) fn split(node: &Node, sh: Shape, d: usize) -> (Node, Node) {
+    let mut left = node.clone();
+    let mut right = node.clone();
+    subdivide_all(&mut left.c, sh, d, SPLIT, false);
+    subdivide_all(&mut right.c, sh, d, SPLIT, true);
+    let [lo, hi] = node.bx[d];
+    let mid = Iv::lerp(lo, hi, SPLIT);
+    left.bx[d] = [lo, mid];
+    right.bx[d] = [mid, hi];
+    (left, right)
+}
+
+/// One de Casteljau subdivision of every polynomial of the node in
+/// direction `d` at `t`, keeping `[t, 1]` (`right`) or `[0, t]`.
+///
+/// In `s` (`d = 0`) whole rows are combined at once (`row_i ← lerp(row_i,
+/// row_{i+1})`), a contiguous loop the compiler vectorizes; in `t` each row
+/// is one contiguous line.
+fn subdivide_all(c: &mut [Iv], sh: Shape, d: usize, t: f64, right: bool) {
+    let w = sh.n + 1;
+    for block in c.chunks_exact_mut(sh.len).take(sh.polys) {
+        if d == 0 {
+            let k = sh.m;
+            for r in 1..=k {
+                if right {
+                    for i in 0..=k - r {
+                        let (head, tail) = block.split_at_mut((i + 1) * w);
+                        for (x, y) in head[i * w..].iter_mut().zip(&tail[..w]) {
+                            *x = Iv::lerp(*x, *y, t);
+                        }
+                    }
+                } else {
+                    for i in (r..=k).rev() {
+                        let (head, tail) = block.split_at_mut(i * w);
+                        for (y, x) in tail[..w].iter_mut().zip(&head[(i - 1) * w..]) {
+                            *y = Iv::lerp(*x, *y, t);
+                        }
+                    }
+                }
+            }
+        } else {
+            let k = sh.n;
+            for line in block.chunks_exact_mut(w) {
+                for r in 1..=k {
+                    if right {
+                        for i in 0..=k - r {
+                            line[i] = Iv::lerp(line[i], line[i + 1], t);
+                        }
+                    } else {
+                        for i in (r..=k).rev() {
+                            line[i] = Iv::lerp(line[i - 1], line[i], t);
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
