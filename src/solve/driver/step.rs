@@ -124,8 +124,8 @@ fn sign_excludes(cx: &mut Ctx, fa: &TriBall, fb: &TriBall) -> bool {
 }
 
 /// The clip bounds of `item` by the run's method (with the roles swapped as
-/// well where [`Limits::swap_roles`](super::Limits::swap_roles) asks), `None` when they prove it empty
-/// (counted as a clip exclusion).
+/// well where [`Limits::swap_roles`](super::Limits::swap_roles) asks),
+/// `None` when they prove it empty (counted as a clip exclusion).
 fn clip_mins<G: Geo>(cx: &mut Ctx, item: &Leaf) -> Option<[f64; 3]> {
     let limits = cx.limits;
     let incenter = item.tb.incenter_bary();
