@@ -19,7 +19,7 @@ use super::num::Geo;
 use super::tribox::TriBox;
 use crate::poly::{tri_index, TriBall, TriBallDD};
 use crate::scalar::Sign;
-pub use precision::{Exact, ExactPair, Precision, EXACT_BELOW, FLOOR_MARGIN, MAX_EXACT_BOXES, NOISE_RATIO};
+pub use precision::{Exact, ExactPair, Precision, EXACT_BELOW, MAX_EXACT_BOXES};
 use step::step;
 
 /// Budgets and tolerances of one run.

@@ -65,7 +65,7 @@ fn clip_floor(item: &Leaf, jets: &CentreJets) -> f64 {
 
 /// A noisy float ball ([`noisy`]) is kept while its [`clip_floor`] is below
 /// this fraction of the run's `ε` (see [`float_suffices`]).
-pub const FLOOR_MARGIN: f64 = 1.0 / 16.0;
+const FLOOR_MARGIN: f64 = 1.0 / 16.0;
 
 /// Whether a tri-box with noisy float balls can do without the compensated
 /// recomputation: its [`clip_floor`] is below [`FLOOR_MARGIN`] of `ε` (the
@@ -92,7 +92,7 @@ fn float_suffices(item: &Leaf, eps: f64) -> bool {
 /// `1e-9 · 1e-6 = 1e-15`, below every `ε` the paper's tables use, and where
 /// the curves meet at a small angle the exact coefficients are what lets
 /// clipping continue at all.
-pub const NOISE_RATIO: f64 = 1e-9;
+const NOISE_RATIO: f64 = 1e-9;
 
 /// The default [`Limits::max_exact`](super::Limits::max_exact).
 pub const MAX_EXACT_BOXES: usize = 64;
