@@ -6,16 +6,22 @@
 //! not halve its diameter, splits the clipped tri-box 1-to-4. The tri-boxes it
 //! produces are one level deeper. Check-sign (§2.3.4) discards a tri-box when
 //! every coefficient of `f` or of `g` on it has one strict sign.
+//!
+//! One step's phases are in `step`; the precision a tri-box's polynomials
+//! are computed in (float balls, compensated, exact) is managed in
+//! `precision`.
 
-use super::fatcurve::ClipBounds;
+mod precision;
+mod step;
+
 use super::krawczyk::Verdict;
-use super::method::{clip_bounds, clip_bounds_swapped, Method};
+use super::method::Method;
 use super::num::Geo;
 use super::tribox::TriBox;
-use crate::poly::dyadic::subdivide_dyadic;
-use crate::poly::{tri_index, TriBall, TriBallDD, TriBezier};
+use crate::poly::{tri_index, TriBall, TriBallDD};
 use crate::scalar::Sign;
-use num_rational::BigRational;
+pub use precision::{Exact, ExactPair, Precision, EXACT_BELOW, MAX_EXACT_BOXES};
+use step::step;
 
 /// Budgets and tolerances of one run.
 #[derive(Clone, Copy, Debug)]
@@ -118,96 +124,9 @@ pub struct Leaf {
     pub precision: Precision,
 }
 
-/// How a tri-box's polynomials were computed from the root triangle's.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
-pub enum Precision {
-    /// Float subdivision ([`TriBall::subdivide`]): radius a few ulps of the
-    /// root polynomial's largest coefficient.
-    Float,
-    /// Compensated subdivision ([`TriBallDD::subdivide`]): radius a few ulps
-    /// of the tri-box's own coefficients.
-    Compensated,
-    /// Exact subdivision of the rational input, then enclosed.
-    Exact,
-}
-
-/// Below this diameter a stalled tri-box is recomputed more precisely
-/// ([`Precision`]: float, then compensated, then exact): float balls carry
-/// ~1e-16 absolute rounding from the root triangle's scale, which near a
-/// tangential intersection (small angle θ) limits clipping to ~1e-16/θ;
-/// compensated balls carry a few ulps of their own (tiny) coefficients plus
-/// ~1e-30 of the root's, exact ones only their final rounding.
-pub const EXACT_BELOW: f64 = 1e-6;
-
-/// Rounding noise (the ball's diameter) above [`NOISE_RATIO`] of the largest
-/// coefficient: the rounding inherited from the root triangle's scale (a few
-/// ulps of the *root's* coefficients, while a small tri-box's coefficients
-/// are small) starts to limit clipping.
-fn noisy(p: &TriBall) -> bool {
-    2.0 * p.rad() > NOISE_RATIO * p.mag()
-}
-
-/// The smallest tri-box a clip of `item` can keep around a transversal root
-/// with its coefficients' noise, estimated: each fat curve is at least the
-/// ball's diameter `2r` wide, a strip `2r / |∇p|` wide in the tri-box's
-/// coordinates (gradient of the midpoint polynomial at the centre), and two
-/// strips at angle `θ` meet in a region about `(w_f + w_g) / sin θ` across;
-/// times the tri-box's diameter. `∞` where the gradients vanish or are
-/// parallel (a double root, a tangency: always worth recomputing).
-///
-/// Near the end of a run to `ε = 1e-12` this is 2e-15 … 5e-14 on the
-/// paper's examples with float balls, but 9e-13 at Example 3 (k = 5)'s
-/// nearly tangential root (sin θ ≈ 4e-3): there the compensated
-/// coefficients save two tri-boxes, elsewhere they bought nothing the clips
-/// needed.
-fn clip_floor(item: &Leaf, jets: &CentreJets) -> f64 {
-    let (a, b) = (jets.a, jets.b);
-    let (na, nb) = (a[0].hypot(a[1]), b[0].hypot(b[1]));
-    let sin = (a[0] * b[1] - a[1] * b[0]).abs() / (na * nb);
-    let floor = item.tb.diam() * (2.0 * item.fa.rad() / na + 2.0 * item.fb.rad() / nb) / sin;
-    if floor.is_nan() {
-        f64::INFINITY
-    } else {
-        floor
-    }
-}
-
-/// A noisy float ball ([`noisy`]) is kept while its [`clip_floor`] is below
-/// this fraction of the run's `ε` (see [`float_suffices`]).
-pub const FLOOR_MARGIN: f64 = 1.0 / 16.0;
-
-/// Whether a tri-box with noisy float balls can do without the compensated
-/// recomputation: its [`clip_floor`] is below [`FLOOR_MARGIN`] of `ε` (the
-/// clips still reach `ε`) *and* the system is nearly linear on it
-/// ([`newton_kappa`] below [`KAPPA_PROBE`]: at most one root, simple, where
-/// Krawczyk contracts). The second condition keeps the precise coefficients
-/// wherever the run works on more than a clip's convergence — near-parallel
-/// curves, clusters, close pairs of roots — where the sign tests, the
-/// separating combination and the singular floor ([`singular_floor`]) need
-/// them (the referee found runs to `ε = 1e-6` on curves 1e-9 apart that
-/// certified fewer roots without it). The estimates only decide when to pay
-/// for precision, never what is proven; a tri-box that stalls after all is
-/// recomputed then (the stalled branch of [`step`]).
-fn float_suffices(item: &Leaf, eps: f64) -> bool {
-    let jets = CentreJets::of(&item.fa, &item.fb);
-    clip_floor(item, &jets) < FLOOR_MARGIN * eps && kappa_of(&jets) < KAPPA_PROBE
-}
-
-/// A clip of a tri-box of diameter `h` across a transversal root can shrink it
-/// to about `ρ·h`, where `ρ` is the relative noise of the coefficients
-/// (the fat curves are at least that wide). Recomputing from the exact input
-/// when `ρ > 1e-9` below [`EXACT_BELOW`] keeps that floor under
-/// `1e-9 · 1e-6 = 1e-15`, below every `ε` the paper's tables use, and where
-/// the curves meet at a small angle the exact coefficients are what lets
-/// clipping continue at all.
-pub const NOISE_RATIO: f64 = 1e-9;
-
 /// After this many undecided probes in a row, only every 16th eligible
 /// tri-box is probed.
 pub const FUTILE_PROBES: usize = 64;
-
-/// The default [`Limits::max_exact`].
-pub const MAX_EXACT_BOXES: usize = 64;
 
 /// With probing on, a tri-box that a clip brought below this diameter is
 /// offered to Krawczyk right away.
@@ -217,22 +136,6 @@ pub const EARLY_CERTIFY: f64 = 1e-2;
 /// contraction `newton_kappa` (private; see its comment) is below this is
 /// probed too.
 pub const KAPPA_PROBE: f64 = 0.3;
-
-/// The exact input, when there is one (rational coefficients).
-pub type ExactPair = [TriBezier<BigRational>; 2];
-
-/// What a run knows exactly about its input system.
-#[derive(Clone, Copy, Debug)]
-pub enum Exact<'a> {
-    /// Nothing beyond the input balls.
-    None,
-    /// The system is these rational polynomials (on the root triangle,
-    /// unscaled).
-    Rational(&'a ExactPair),
-    /// The input balls have radius 0: their float coefficients are the
-    /// system (its rationals are built only if an exact restart needs them).
-    Floats,
-}
 
 /// Counters of one run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -308,55 +211,6 @@ struct Ctx<'a> {
     dd: Option<[TriBallDD; 2]>,
     limits: &'a Limits,
     out: Run,
-}
-
-impl Ctx<'_> {
-    /// The root pair in double-double: from the exact input when there is
-    /// one, else the float balls themselves; scaled like `f`, `g`.
-    fn dd(&mut self) -> &[TriBallDD; 2] {
-        if self.dd.is_none() {
-            let e = self.out.scale_exp;
-            let pair = match self.exact {
-                Exact::Rational([fe, ge]) => {
-                    [fe, ge].map(|p| TriBallDD::from_rationals(p.degree(), p.coeffs()).scaled_pow2(e))
-                }
-                Exact::Floats | Exact::None => [&self.f, &self.g].map(TriBallDD::from_ball),
-            };
-            self.dd = Some(pair);
-        }
-        self.dd.as_ref().expect("just built")
-    }
-
-    /// The exact input, if there is one and its budget is not spent.
-    fn exact_left(&self) -> bool {
-        !matches!(self.exact, Exact::None) && self.out.counters.exact_boxes < self.limits.max_exact
-    }
-
-    /// The exact input pair (unscaled), built on first use for
-    /// [`Exact::Floats`] from the balls' midpoints scaled back (exactly: the
-    /// run checked that the scaling lost nothing).
-    fn exact_pair(&mut self) -> Option<&ExactPair> {
-        match self.exact {
-            Exact::Rational(p) => Some(p),
-            Exact::None => None,
-            Exact::Floats => {
-                if self.exact_floats.is_none() {
-                    let e = self.out.scale_exp;
-                    let back = |b: &TriBall| {
-                        let b = b.scaled_pow2(-e);
-                        let c = b
-                            .mid()
-                            .iter()
-                            .map(|&m| BigRational::from_float(m).unwrap_or_default())
-                            .collect();
-                        TriBezier::new(b.degree(), c).expect("same length")
-                    };
-                    self.exact_floats = Some([back(&self.f), back(&self.g)]);
-                }
-                self.exact_floats.as_ref()
-            }
-        }
-    }
 }
 
 /// Runs Algorithm 1 on the root triangle, on which `f` and `g` are given
@@ -472,7 +326,7 @@ fn newton_kappa(f: &TriBall, g: &TriBall) -> f64 {
 
 /// The gradients `a`, `b` and Hessians `ha`, `hb` of the midpoint
 /// polynomials of `f` and `g` at the tri-box's centroid, in its own
-/// coordinates ([`newton_kappa`] and [`clip_floor`] read the same jets).
+/// coordinates ([`newton_kappa`] and `clip_floor` read the same jets).
 struct CentreJets {
     a: [f64; 2],
     ha: [f64; 3],
@@ -600,48 +454,6 @@ fn too_small(tb: &TriBox) -> bool {
     tb.diam() < 8.0 * f64::EPSILON * scale
 }
 
-/// The pair on `tb` at `precision` (counted): by float or compensated ball
-/// subdivision of the root pair, or from the exact input (enclosed, then
-/// scaled like the run's system). Exact falls back to compensated when the
-/// exact input or its budget is gone.
-fn restrict_pair(cx: &mut Ctx, precision: Precision, tb: &TriBox) -> (TriBall, TriBall, Precision) {
-    match precision {
-        Precision::Exact if cx.exact_left() => {
-            cx.out.counters.exact_boxes += 1;
-            let e = cx.out.scale_exp;
-            let [fe, ge] = cx.exact_pair().expect("exact_left");
-            // Integer arithmetic over common denominators (no gcds).
-            let enclose = |p: &TriBezier<BigRational>| match subdivide_dyadic(p, &tb.verts) {
-                Some(c) => TriBall::enclose_rationals(p.degree(), &c).scaled_pow2(e),
-                None => TriBall::unbounded(p.degree()),
-            };
-            (enclose(fe), enclose(ge), Precision::Exact)
-        }
-        Precision::Exact | Precision::Compensated => {
-            cx.out.counters.compensated_boxes += 1;
-            let [f, g] = cx.dd();
-            let (fa, fb) = TriBallDD::subdivide_pair(f, g, &tb.verts);
-            (fa, fb, Precision::Compensated)
-        }
-        Precision::Float => {
-            let (fa, fb) = TriBall::subdivide_pair(&cx.f, &cx.g, &tb.verts);
-            (fa, fb, Precision::Float)
-        }
-    }
-}
-
-/// The next precision for a tri-box whose polynomials are too noisy: always
-/// compensated after float; exact after compensated when the exact input is
-/// there with budget left and the tri-box is below [`EXACT_BELOW`]. `None`
-/// if there is nothing better.
-fn finer(cx: &Ctx, precision: Precision, diam: f64) -> Option<Precision> {
-    match precision {
-        Precision::Float => Some(Precision::Compensated),
-        Precision::Compensated if cx.exact_left() && diam < EXACT_BELOW => Some(Precision::Exact),
-        _ => None,
-    }
-}
-
 /// Below this diameter a stalled, undecided tri-box is not split further
 /// ([`SINGULAR_FLOOR`] for float coefficients; compensated and exact
 /// coefficients resolve far closer to a multiple root, and two simple roots
@@ -666,215 +478,6 @@ pub const FINE_BUDGET: usize = 256;
 /// separating combination is resolvable to h ~ 1e-15; this stays clear of
 /// the float grid of the vertices.
 pub const SINGULAR_FLOOR_PRECISE: f64 = 1e-13;
-
-/// Whether a rigorous run should recompute a tri-box's coefficients more
-/// precisely: `Some(true)` when a sign is hidden by the radius
-/// ([`TriBall::sign_hidden`]: exact coefficients prove their signs one by one
-/// at any size, within the exact budget — a sparse system whose small terms
-/// are far below the rounding of its large ones), `Some(false)` when the
-/// coefficients are noisy relative to their values ([`noisy`], which
-/// matters on small tri-boxes) and the float balls do not suffice
-/// ([`float_suffices`]), `None` otherwise and always for the float kernel.
-fn needs_finer<G: Geo>(item: &Leaf, eps: f64) -> Option<bool> {
-    if !G::RIGOROUS {
-        return None;
-    }
-    if item.fa.sign_hidden() || item.fb.sign_hidden() {
-        return Some(true);
-    }
-    ((noisy(&item.fa) || noisy(&item.fb)) && !float_suffices(item, eps)).then_some(false)
-}
-
-fn step<G: Geo>(cx: &mut Ctx, mut item: Leaf, stack: &mut Vec<Leaf>, probe: &mut dyn FnMut(&TriBox) -> Probe) {
-    let limits = cx.limits;
-    let level = cx.out.nodes[item.node].level + 1;
-    let diam = item.tb.diam();
-    // Recompute more precisely (same tri-box, same level) before the clip is
-    // spoiled by rounding, as long as a finer precision helps.
-    while let Some(hidden) = needs_finer::<G>(&item, limits.eps) {
-        let Some(next) = finer(cx, item.precision, if hidden { 0.0 } else { diam }) else {
-            break;
-        };
-        if next == Precision::Exact {
-            cx.out.counters.exact_restarts += 1;
-        } else {
-            cx.out.counters.compensated_restarts += 1;
-        }
-        let (fa, fb, precision) = restrict_pair(cx, next, &item.tb);
-        if precision <= item.precision {
-            break;
-        }
-        item = Leaf {
-            fa,
-            fb,
-            precision,
-            ..item
-        };
-    }
-    // Every root is a root of any combination w_f f + w_g g: one that is
-    // one-signed on the tri-box excludes it for the price of two jets and a
-    // combination, before the (far costlier) clip. The combination closest to
-    // vanishing at the centre varies least over the tri-box, so it is the
-    // likeliest to keep one sign where the curves pass without meeting.
-    if separating_combination(&item.fa, &item.fb) == Combination::NoRoot {
-        cx.out.counters.sign_exclusions += 1;
-        return;
-    }
-    let incenter = item.tb.incenter_bary();
-    let bounds = if limits.swap_roles && matches!(limits.method, Method::Hc | Method::HcNoPre) {
-        // Where the clip keeps more than half, the clip with f and g swapped
-        // as well (its fat line is g's), intersected.
-        let (bounds, swapped) = clip_bounds_swapped::<G>(limits.method, &item.fa, &item.fb, incenter);
-        cx.out.counters.role_swaps += usize::from(swapped);
-        bounds
-    } else {
-        clip_bounds::<G>(limits.method, &item.fa, &item.fb, incenter)
-    };
-    let mins = match bounds {
-        ClipBounds::Empty => {
-            cx.out.counters.clip_exclusions += 1;
-            return;
-        }
-        ClipBounds::Keep(m) => m,
-    };
-    let clipped = if mins.iter().sum::<f64>() > 0.0 {
-        if G::RIGOROUS {
-            item.tb.clip(mins)
-        } else {
-            item.tb.clip_unverified(mins)
-        }
-    } else {
-        None
-    };
-    let (tb, fa, fb, precision) = match clipped {
-        Some(tb) if tb.diam() < diam => {
-            cx.out.counters.clips += 1;
-            let (fa, fb, precision) = restrict_pair(cx, item.precision, &tb);
-            (tb, fa, fb, precision)
-        }
-        _ => (item.tb, item.fa, item.fb, item.precision),
-    };
-    if uniform_sign(&fa).is_some() || uniform_sign(&fb).is_some() {
-        cx.out.counters.sign_exclusions += 1;
-        return;
-    }
-    let new_diam = tb.diam();
-    let progressed = match limits.split {
-        SplitRule::Halving => new_diam <= 0.5 * diam,
-        SplitRule::PaperLiteral => mins.iter().sum::<f64>() > 0.5 * diam && new_diam < diam,
-    };
-    let stalled_finer = if G::RIGOROUS && !progressed && new_diam < EXACT_BELOW {
-        finer(cx, precision, new_diam)
-    } else {
-        None
-    };
-    if let Some(next) = stalled_finer {
-        // Stalled at the rounding floor: redo this tri-box more precisely.
-        if next == Precision::Exact {
-            cx.out.counters.exact_restarts += 1;
-        } else {
-            cx.out.counters.compensated_restarts += 1;
-        }
-        let (fa, fb, precision) = restrict_pair(cx, next, &tb);
-        let node = push_node(&mut cx.out, item.node, level, new_diam);
-        stack.push(Leaf {
-            tb,
-            node,
-            fa,
-            fb,
-            precision,
-        });
-        return;
-    }
-    // Probes: a converging clip below EARLY_CERTIFY, or below ½ where
-    // newton_kappa predicts contraction, may already be certified
-    // (Krawczyk's contraction then converges quadratically without further
-    // clips); a stalled one below `probe_below` may be certified or excluded,
-    // and below SINGULAR_FLOOR it is not split further.
-    let probe_here = limits.probe_below > 0.0
-        && if progressed {
-            new_diam < EARLY_CERTIFY || (new_diam < 0.5 && newton_kappa(&fa, &fb) < KAPPA_PROBE)
-        } else {
-            new_diam < limits.probe_below
-        };
-    // After a long run of futile probes (all undecided: curves running
-    // within a hair of each other over a long stretch, where every tri-box
-    // stalls), probe only every 16th tri-box; a probe only saves work.
-    let throttled = cx.out.futile_probes >= FUTILE_PROBES && cx.out.counters.boxes % 16 != 0;
-    let verdict = if probe_here && !throttled {
-        cx.out.counters.probes += 1;
-        let v = probe(&tb);
-        cx.out.futile_probes = if v == Probe::Undecided(()) {
-            cx.out.futile_probes + 1
-        } else {
-            0
-        };
-        v
-    } else {
-        Probe::Undecided(())
-    };
-    let next = Leaf {
-        tb,
-        node: item.node,
-        fa,
-        fb,
-        precision,
-    };
-    let stop_here = match verdict {
-        Probe::NoRoot => {
-            cx.out.counters.probe_exclusions += 1;
-            return;
-        }
-        Probe::Unique(()) => true,
-        Probe::Undecided(()) if !progressed && probe_here && G::RIGOROUS => {
-            match separating_combination(&next.fa, &next.fb) {
-                Combination::NoRoot => {
-                    cx.out.counters.sign_exclusions += 1;
-                    return;
-                }
-                Combination::Lost => true,
-                Combination::Open => {
-                    if new_diam < SINGULAR_FLOOR {
-                        cx.out.fine_boxes += 1;
-                    }
-                    new_diam < singular_floor(cx, next.precision)
-                }
-            }
-        }
-        Probe::Undecided(()) => false,
-    };
-    if stop_here || progressed {
-        let leaf = at_level(&mut cx.out, next, level, new_diam);
-        if stop_here {
-            cx.out.leaves.push(leaf);
-        } else {
-            stack.push(leaf);
-        }
-        return;
-    }
-    let Some(kids) = next.tb.split4() else {
-        // Collapsed at the rounding floor: hand it to the certification phase.
-        let leaf = at_level(&mut cx.out, next, level, new_diam);
-        return cx.out.leaves.push(leaf);
-    };
-    cx.out.counters.splits += 1;
-    // Push in reverse so the corner at V1 is processed first.
-    for kid in kids.into_iter().rev() {
-        let (ka, kb, precision) = restrict_pair(cx, precision, &kid);
-        if uniform_sign(&ka).is_some() || uniform_sign(&kb).is_some() {
-            cx.out.counters.sign_exclusions += 1;
-            continue;
-        }
-        let node = push_node(&mut cx.out, item.node, level, kid.diam());
-        stack.push(Leaf {
-            tb: kid,
-            node,
-            fa: ka,
-            fb: kb,
-            precision,
-        });
-    }
-}
 
 /// `leaf` (whose `node` is its parent's) recorded in the trace as a child at `level`.
 fn at_level(out: &mut Run, mut leaf: Leaf, level: usize, diam: f64) -> Leaf {
@@ -907,9 +510,8 @@ pub fn path_diameters(nodes: &[Node], node: usize) -> Vec<f64> {
 mod tests {
     use super::*;
     use crate::scalar::rational_to_f64;
-    use crate::solve::num::GeoIv;
 
-    fn ball(expr: &str) -> TriBall {
+    pub(super) fn ball(expr: &str) -> TriBall {
         let p = crate::parse_polynomial(expr).unwrap().to_triangle(2);
         TriBall::from_points(&p.map(rational_to_f64))
     }
@@ -925,48 +527,5 @@ mod tests {
         let k = newton_kappa(&ball("u^2 + v^2 - 1/4"), &ball("u - v"));
         assert!((k - 3.0).abs() < 1e-12, "{k}");
         assert_eq!(newton_kappa(&ball("u - v"), &ball("2*u - 2*v + 1")), f64::INFINITY);
-    }
-
-    /// The clip floor against values worked by hand on the unit triangle
-    /// (diameter √2) with radius `r` on both balls: `√2 · (2r/|∇f| +
-    /// 2r/|∇g|) / sin θ` — `√2 · 4r` for `u`, `v` (θ = 90°), `√2 · (2r + 2r/√2)
-    /// / sin 45°` for `u`, `u + v`; ∞ for parallel gradients and for a
-    /// vanishing one. And the gate: a noisy ball is recomputed for an `ε`
-    /// near its floor, not for one far above it unless the system is far
-    /// from linear on the tri-box.
-    #[test]
-    fn clip_floor_by_hand() {
-        let r = 1e-9;
-        let leaf = |f: &str, g: &str| {
-            let noisy = |e: &str| TriBall::new(2, ball(e).mid(), r).unwrap();
-            Leaf {
-                tb: TriBox::unit(),
-                node: 0,
-                fa: noisy(f),
-                fb: noisy(g),
-                precision: Precision::Float,
-            }
-        };
-        let clip_floor = |item: &Leaf| clip_floor(item, &CentreJets::of(&item.fa, &item.fb));
-        let close = |x: f64, y: f64| (x - y).abs() <= 1e-12 * y;
-        let s2 = 2f64.sqrt();
-        let right = clip_floor(&leaf("u - 1/3", "v - 1/4"));
-        assert!(close(right, s2 * 4.0 * r), "{right}");
-        let slanted = clip_floor(&leaf("u - 1/3", "u + v - 1/2"));
-        assert!(close(slanted, s2 * (2.0 * r + 2.0 * r / s2) * s2), "{slanted}");
-        assert_eq!(clip_floor(&leaf("u - 1/3", "2*u - 1/2")), f64::INFINITY);
-        assert_eq!(clip_floor(&leaf("1/3", "v - 1/4")), f64::INFINITY);
-        // Coefficients up to 2/3 with noise 2e-9 > 1e-9 · 2/3: noisy; the
-        // floor 5.7e-9 matters for ε = 1e-8, not for ε = 1e-6.
-        let item = leaf("u - 1/3", "v - 1/4");
-        assert!(noisy(&item.fa));
-        assert_eq!(needs_finer::<GeoIv>(&item, 1e-8), Some(false));
-        assert_eq!(needs_finer::<GeoIv>(&item, 1e-6), None);
-        assert_eq!(needs_finer::<f64>(&item, 1e-8), None);
-        // Far from linear (κ = 3, see `newton_kappa_by_hand`), the precise
-        // coefficients are kept whatever the floor.
-        let curved = leaf("u^2 + v^2 - 1/4", "u - v");
-        assert!(noisy(&curved.fa) && clip_floor(&curved) < 1e-7);
-        assert_eq!(needs_finer::<GeoIv>(&curved, 1e-6), Some(false));
     }
 }
