@@ -412,7 +412,8 @@ proptest! {
     /// hit once, certified, though the neighbouring pieces each find it —
     /// when every piece there faces the ray. Where one does not (a crease
     /// seen partly from behind, e.g. a pyramid's apex) the hit is singular,
-    /// no proof can merge the reports, and each must still hold the hit.
+    /// no proof can merge the reports, and each report near it must still
+    /// hold it.
     #[test]
     fn hits_on_knot_lines_are_reported_once(
         spec in spec(),
@@ -450,12 +451,18 @@ proptest! {
         let hits = hits_of(&surface.clone().into(), &ray);
         check_hits(&spec, &ray, &hits);
         let near: Vec<&Hit> = hits.iter().filter(|h| (h.point - aim).length() <= 1e-9 * spec.scale()).collect();
-        prop_assert!(!near.is_empty(), "aim ({}, {}) at {}: {:?}", u0, v0, aim, hits);
         for h in &near {
             prop_assert!(gap(h.bx.u, u0) <= 1e-9 && gap(h.bx.v, v0) <= 1e-9, "{:?}", h);
         }
+        // The float ray passes within rounding of `aim`, not through it. Where
+        // every piece faces the ray the surface is a graph over the plane
+        // across it near `aim`, so the ray hits it there; where one does not,
+        // the exact ray may miss every piece by ~1e-16 (PROPTEST_RNG_SEED=120:
+        // the four pieces' roots lie 1e-16 outside them, checked in exact
+        // arithmetic) and "no hit" is then the right answer.
         let facing = normals.iter().all(|n| n.dot(d.normalize()) <= -0.2);
         if facing {
+            prop_assert!(!near.is_empty(), "aim ({}, {}) at {}: {:?}", u0, v0, aim, hits);
             prop_assert_eq!(near.len(), 1, "aim ({}, {}) at {}: {:?}", u0, v0, aim, hits);
             prop_assert!(near[0].is_certified());
         }
