@@ -15,8 +15,8 @@ pub mod method {
     pub use crate::solve::method::*;
 }
 /// The geometry kernels (`f64`, `GeoIv`).
-pub mod num {
-    pub use crate::solve::num::*;
+pub mod geo {
+    pub use crate::scalar::geo::*;
 }
 /// Tri-boxes: verified clip and split.
 pub mod tribox {

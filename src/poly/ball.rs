@@ -41,6 +41,7 @@ use super::index::{tri_index, tri_len, Bary};
 use super::l2;
 use super::triangle::TriBezier;
 use crate::error::{Error, Result};
+use crate::scalar::eft::{two_prod, two_sum, Dd, DdPoint};
 use crate::scalar::{iv, MatrixCache, MatrixKey, Scalar, Sign};
 use inari::Interval;
 use num_rational::BigRational;
@@ -580,41 +581,6 @@ pub struct TriBallDD {
     rad: f64,
 }
 
-/// `a + b = s + e` exactly (Knuth's TwoSum).
-#[inline(always)]
-pub(crate) fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    let bb = s - a;
-    (s, (a - (s - bb)) + (b - bb))
-}
-
-/// `a·b = p + e` exactly (one FMA), away from underflow.
-#[inline(always)]
-pub(crate) fn two_prod(a: f64, b: f64) -> (f64, f64) {
-    let p = a * b;
-    (p, a.mul_add(b, -p))
-}
-
-/// A vertex in double-double barycentrics: `s`, `t` exact, `1 − s − t =
-/// wh + wl` up to `|ew| ≤ u|wl|`.
-#[derive(Clone, Copy)]
-struct DdPoint {
-    s: f64,
-    t: f64,
-    wh: f64,
-    wl: f64,
-}
-
-impl DdPoint {
-    fn new([s, t]: [f64; 2]) -> Self {
-        // 1 − s = a + e1, a − t = b + e2 (both exact), e1 + e2 = c + e3.
-        let (a, e1) = two_sum(1.0, -s);
-        let (b, e2) = two_sum(a, -t);
-        let (wh, wl) = two_sum(b, e1 + e2);
-        Self { s, t, wh, wl }
-    }
-}
-
 impl TriBallDD {
     /// The float ball `b` as a double-double one (low parts 0).
     pub fn from_ball(b: &TriBall) -> Self {
@@ -736,13 +702,6 @@ impl TriBallDD {
             finish(n, mid, rad)
         })
     }
-}
-
-/// A double-double value `h + l` (`|l| ≤ u|h|` after renormalization).
-#[derive(Clone, Copy, Debug, Default)]
-struct Dd {
-    h: f64,
-    l: f64,
 }
 
 /// The values one de Casteljau step combines, `L` nets at once: the blossom

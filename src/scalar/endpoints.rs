@@ -24,6 +24,7 @@
 //! anything else (empty, unbounded, huge or tiny endpoints) to inari itself.
 
 use super::cache::{local_matrix, remember_local_matrix, MatrixCache, MatrixKey};
+use super::eft::{add_up, mul_up, select};
 use super::kernel::Scalar;
 use inari::Interval;
 use num_rational::BigRational;
@@ -236,47 +237,6 @@ const MUL_MAX: f64 = f64::from_bits((1023 + 480) << 52);
 // (coefficient signs are effectively random), so the rounding below is
 // branch-free. Only the range checks and the sign class of a product's first
 // factor branch; both are stable within the callers' loops.
-
-/// `if take { x } else { y }` as a bit blend.
-#[inline(always)]
-fn select(take: bool, x: f64, y: f64) -> f64 {
-    let mask = (take as u64).wrapping_neg();
-    f64::from_bits((x.to_bits() & mask) | (y.to_bits() & !mask))
-}
-
-/// `x` moved one float towards `+∞` if `err > 0`. Only for finite non-zero
-/// `x`, or zero `err`: a non-zero rounding error implies a non-zero result
-/// here (sums are exact at zero; products in range never vanish).
-#[inline(always)]
-fn up(x: f64, err: f64) -> f64 {
-    // `0 − err` has its sign bit set exactly when err > 0 (both zeros give +0
-    // in round-to-nearest). A mask taken from that bit, rather than from a
-    // comparison, is not turned back into a branch by LLVM.
-    let nudge = (0.0 - err).to_bits() >> 63;
-    // For x > 0 the next float up has bits + 1; for x < 0, bits − 1.
-    let step = 1u64.wrapping_sub((x.to_bits() >> 63) << 1);
-    f64::from_bits(x.to_bits().wrapping_add(step & nudge.wrapping_neg()))
-}
-
-/// `a + b` rounded up, lane by lane: TwoSum gives the rounding error exactly.
-#[inline(always)]
-fn add_up(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
-    let s = [a[0] + b[0], a[1] + b[1]];
-    let bb = [s[0] - a[0], s[1] - a[1]];
-    let e = [
-        (a[0] - (s[0] - bb[0])) + (b[0] - bb[0]),
-        (a[1] - (s[1] - bb[1])) + (b[1] - bb[1]),
-    ];
-    [up(s[0], e[0]), up(s[1], e[1])]
-}
-
-/// `a · b` rounded up, lane by lane: one FMA gives the rounding error exactly.
-#[inline(always)]
-fn mul_up(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
-    let p = [a[0] * b[0], a[1] * b[1]];
-    let e = [a[0].mul_add(b[0], -p[0]), a[1].mul_add(b[1], -p[1])];
-    [up(p[0], e[0]), up(p[1], e[1])]
-}
 
 #[inline(always)]
 fn add_safe(x: Endpoints, y: Endpoints) -> bool {

@@ -27,7 +27,9 @@
 
 mod cache;
 mod convert;
+pub(crate) mod eft;
 mod endpoints;
+pub(crate) mod geo;
 pub(crate) mod iv;
 mod kernel;
 pub(crate) mod rational_interval;

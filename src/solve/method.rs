@@ -6,8 +6,8 @@ use super::fatcurve::{
     Quadratic,
 };
 use super::linalg::solve3;
-use super::num::Geo;
 use crate::poly::{Reduced, TriBall};
+use crate::scalar::geo::Geo;
 use std::fmt;
 use std::str::FromStr;
 
@@ -262,7 +262,7 @@ fn strip_width(red: &Reduced) -> f64 {
 /// `u_min, v_min, w_min` for `method`, or `Empty` when the fat regions (or
 /// hulls) prove the tri-box root-free. `incenter` is the tri-box incenter in
 /// its own barycentric coordinates (for `Hc`). The geometry runs in `G`:
-/// [`GeoIv`](super::num::GeoIv) for proofs, `f64` for the plain iteration.
+/// [`GeoIv`](crate::scalar::geo::GeoIv) for proofs, `f64` for the plain iteration.
 pub fn clip_bounds<G: Geo>(method: Method, fa: &TriBall, fb: &TriBall, incenter: [f64; 3]) -> ClipBounds {
     match method {
         Method::Bezier => intersect_bounds(

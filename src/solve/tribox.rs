@@ -14,7 +14,7 @@
 //! until each is proven on or outside its edge, so the four children cover the
 //! parent.
 
-use super::num::{Geo, GeoIv};
+use crate::scalar::geo::{Geo, GeoIv};
 use crate::scalar::{interval, point};
 use inari::Interval;
 
@@ -104,7 +104,7 @@ fn left_of_filtered(a: Pt, b: Pt, k: [GeoIv; 2]) -> bool {
 /// against the few ulps of `Σ wᵢ Vᵢ` evaluated in intervals, with no interval
 /// operation.
 fn corner_enclosure(o: Pt, (x, v): (f64, Pt), (y, w): (f64, Pt)) -> [GeoIv; 2] {
-    use crate::poly::ball::{two_prod, two_sum};
+    use crate::scalar::eft::{two_prod, two_sum};
     const U: f64 = f64::EPSILON / 2.0;
     [0, 1].map(|i| {
         let (dv, edv) = two_sum(v[i], -o[i]);

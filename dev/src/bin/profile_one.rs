@@ -8,7 +8,7 @@
 use rootclip::inari::Interval;
 use rootclip::internals::ball::TriBall;
 use rootclip::internals::driver::{self, Exact, Limits, Probe};
-use rootclip::internals::num::GeoIv;
+use rootclip::internals::geo::GeoIv;
 use rootclip::internals::repro;
 use rootclip::internals::{solve_triangle, solve_triangle_f64};
 use rootclip::solve::{Method, SolveOptions, SplitRule};

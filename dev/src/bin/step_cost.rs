@@ -4,8 +4,8 @@
 //! the verified tri-box clip.
 use rootclip::inari::Interval;
 use rootclip::internals::ball::TriBall;
+use rootclip::internals::geo::GeoIv;
 use rootclip::internals::method::{clip_bounds, fat_curve, preprocess_general};
-use rootclip::internals::num::GeoIv;
 use rootclip::internals::tribox::TriBox;
 use rootclip::solve::Method;
 use rootclip::{parse_polynomial, Scalar};

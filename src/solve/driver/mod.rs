@@ -16,9 +16,9 @@ mod step;
 
 use super::krawczyk::Verdict;
 use super::method::Method;
-use super::num::Geo;
 use super::tribox::TriBox;
 use crate::poly::{tri_index, TriBall, TriBallDD};
+use crate::scalar::geo::Geo;
 use crate::scalar::Sign;
 pub use precision::{Exact, ExactPair, Precision, EXACT_BELOW, MAX_EXACT_BOXES};
 use step::step;

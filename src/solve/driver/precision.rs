@@ -5,7 +5,7 @@
 use super::{kappa_of, CentreJets, Ctx, Leaf, KAPPA_PROBE};
 use crate::poly::dyadic::subdivide_dyadic;
 use crate::poly::{TriBall, TriBallDD, TriBezier};
-use crate::solve::num::Geo;
+use crate::scalar::geo::Geo;
 use crate::solve::tribox::TriBox;
 use num_rational::BigRational;
 
@@ -259,7 +259,7 @@ pub(super) fn restart_pair(cx: &mut Ctx, next: Precision, tb: &TriBox) -> (TriBa
 mod tests {
     use super::super::tests::ball;
     use super::*;
-    use crate::solve::num::GeoIv;
+    use crate::scalar::geo::GeoIv;
 
     /// The clip floor against values worked by hand on the unit triangle
     /// (diameter √2) with radius `r` on both balls: `√2 · (2r/|∇f| +

@@ -6,9 +6,9 @@ use super::{
     Precision, Probe, Run, SplitRule, EARLY_CERTIFY, EXACT_BELOW, FUTILE_PROBES, KAPPA_PROBE, SINGULAR_FLOOR,
 };
 use crate::poly::TriBall;
+use crate::scalar::geo::Geo;
 use crate::solve::fatcurve::ClipBounds;
 use crate::solve::method::{clip_bounds, clip_bounds_swapped, Method};
-use crate::solve::num::Geo;
 use crate::solve::tribox::TriBox;
 
 /// One step of Algorithm 1 on `item` (see the module docs), phase by phase:

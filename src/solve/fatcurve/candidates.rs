@@ -12,7 +12,7 @@
 //! So `min_R ℓ = min` over the *feasible* candidates of these kinds.
 //!
 //! # Rigor
-//! With a rigorous kernel ([`GeoIv`](crate::solve::num::GeoIv)) every candidate is an enclosure of the exact
+//! With a rigorous kernel ([`GeoIv`](crate::scalar::geo::GeoIv)) every candidate is an enclosure of the exact
 //! candidate of the exact constraint curves, feasibility is tested as
 //! "possibly feasible", and the bound is the lower end of the enclosures, so
 //! `u_min` is a rigorous lower bound. Where an enclosure cannot be bounded
@@ -22,9 +22,9 @@
 //! empty: the tri-box holds no root.
 
 use super::{Bounds, ClipBounds, Fat, Linear, Quadratic};
+use crate::scalar::geo::Geo;
 use crate::scalar::iv;
 use crate::scalar::Sign;
-use crate::solve::num::Geo;
 use smallvec::SmallVec;
 
 /// A boundary line with what its candidates need, computed once per line:
@@ -493,8 +493,8 @@ fn roots_in<G: Geo>(eq: &Quad<G>, range: [f64; 2], keep: &mut impl FnMut(G) -> b
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scalar::geo::GeoIv;
     use crate::scalar::{interval, point};
-    use crate::solve::num::GeoIv;
     use inari::Interval;
 
     #[test]

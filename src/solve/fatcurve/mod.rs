@@ -29,7 +29,7 @@ mod candidates;
 mod hull;
 mod verifier;
 
-use super::num::Geo;
+use crate::scalar::geo::Geo;
 use candidates::clip_in;
 pub use candidates::quadratic_roots_in_unit;
 pub use hull::{bezier_bounds, intersect_bounds};
@@ -260,7 +260,7 @@ fn keep_or_empty(m: [f64; 3], rigorous: bool) -> ClipBounds {
 ///
 /// The candidates are computed in the geometry kernel `G`: for the certified
 /// solver the branchless outward-rounded
-/// [`GeoIv`](super::num::GeoIv), whose enclosures are as rigorous as inari's
+/// [`GeoIv`](crate::scalar::geo::GeoIv), whose enclosures are as rigorous as inari's
 /// (a few floats wider) at a fraction of the cost.
 pub fn clip_against_fat_curves<G: Geo>(fats: &[Fat<G>]) -> ClipBounds {
     if G::RIGOROUS {

@@ -3,7 +3,7 @@
 //! its sweeps reduce to, and the budgets that bound their work.
 
 use super::{Fat, Linear, Quadratic};
-use crate::solve::num::Geo;
+use crate::scalar::geo::Geo;
 use std::cell::Cell;
 
 /// The data of [`Verifier::sliver_free`] shared by the three slivers of one
@@ -599,8 +599,8 @@ fn bounded_away<G: Geo>(e: G, d: G, c: G, h_max: G, delta: f64) -> bool {
 mod tests {
     use super::super::{proposed_and_verified, ClipBounds};
     use super::*;
+    use crate::scalar::geo::GeoIv;
     use crate::scalar::point;
-    use crate::solve::num::GeoIv;
     use inari::Interval;
 
     /// The verified float clip never claims too much, checked independently

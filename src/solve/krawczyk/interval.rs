@@ -9,9 +9,9 @@
 
 use super::verdict::{IBox, Verdict};
 use crate::poly::{Direction, TensorBezier, TriBezier};
+use crate::scalar::geo::{Geo, GeoIv};
 use crate::scalar::point;
 use crate::solve::linalg::inverse2;
-use crate::solve::num::{Geo, GeoIv};
 use inari::Interval;
 
 /// A bivariate polynomial the Krawczyk operator can work on: evaluated in

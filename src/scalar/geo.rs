@@ -8,8 +8,10 @@
 //! rigor). The `possibly_*` predicates are the conservative direction: for
 //! intervals they answer `true` unless the opposite is proven.
 
-use crate::scalar::iv::{down, up, Iv};
-use crate::scalar::{interval, point, Scalar, Sign};
+use super::convert::{interval, point};
+use super::eft::{add_up, mul_up, round_up, select};
+use super::iv::{down, up, Iv};
+use super::kernel::{Scalar, Sign};
 use inari::Interval;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -204,47 +206,6 @@ fn exact_safe(v: f64) -> bool {
 #[inline(always)]
 fn exact_safe2(x: [f64; 2], y: [f64; 2]) -> bool {
     exact_safe(x[0]) & exact_safe(x[1]) & exact_safe(y[0]) & exact_safe(y[1])
-}
-
-/// `r` moved one float towards `+∞` if `err > 0`: the rounded-up value of
-/// `r + err` for a nearest `r` with exact error `err`. Only for finite
-/// non-zero `r`, or `err = 0` (a non-zero error implies a non-zero result
-/// in the checked ranges).
-#[inline(always)]
-fn round_up(r: f64, err: f64) -> f64 {
-    // The sign bit of `0 − err` is set exactly when err > 0 (both zeros give +0).
-    let nudge = (0.0 - err).to_bits() >> 63;
-    // For r > 0 the next float up has bits + 1; for r < 0, bits − 1.
-    let step = 1u64.wrapping_sub((r.to_bits() >> 63) << 1);
-    f64::from_bits(r.to_bits().wrapping_add(step & nudge.wrapping_neg()))
-}
-
-/// `a + b` rounded up, lane by lane: TwoSum gives the rounding error exactly.
-#[inline(always)]
-fn add_up(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
-    let s = [a[0] + b[0], a[1] + b[1]];
-    let bb = [s[0] - a[0], s[1] - a[1]];
-    let e = [
-        (a[0] - (s[0] - bb[0])) + (b[0] - bb[0]),
-        (a[1] - (s[1] - bb[1])) + (b[1] - bb[1]),
-    ];
-    [round_up(s[0], e[0]), round_up(s[1], e[1])]
-}
-
-/// `a · b` rounded up, lane by lane: one FMA gives the rounding error exactly.
-#[inline(always)]
-fn mul_up(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
-    let p = [a[0] * b[0], a[1] * b[1]];
-    let e = [a[0].mul_add(b[0], -p[0]), a[1].mul_add(b[1], -p[1])];
-    [round_up(p[0], e[0]), round_up(p[1], e[1])]
-}
-
-/// `if take { x } else { y }` as a bit blend (coefficient signs are
-/// effectively random: a branch would mispredict).
-#[inline(always)]
-fn select(take: bool, x: f64, y: f64) -> f64 {
-    let mask = (take as u64).wrapping_neg();
-    f64::from_bits((x.to_bits() & mask) | (y.to_bits() & !mask))
 }
 
 /// `a / b` rounded up (`b ≠ 0`, both [`exact_safe`]): the remainder
