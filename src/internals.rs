@@ -4,7 +4,11 @@
 
 /// The triangle solver's iteration (Algorithm 1 on ball polynomials).
 pub mod driver {
-    pub use crate::solve::driver::*;
+    pub use crate::solve::driver::edges::*;
+    pub use crate::solve::driver::estimates::*;
+    pub use crate::solve::driver::precision::*;
+    pub use crate::solve::driver::run;
+    pub use crate::solve::driver::state::*;
 }
 /// Fat curves, verified clips, candidate enumeration, hull bounds.
 pub mod fatcurve {

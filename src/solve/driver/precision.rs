@@ -2,25 +2,13 @@
 //! float balls, compensated, exact), and when a step recomputes them more
 //! precisely.
 
-use super::{kappa_of, CentreJets, Ctx, Leaf, KAPPA_PROBE};
+use super::estimates::{kappa_of, CentreJets};
+use super::state::{Ctx, Exact, ExactPair, Leaf, Precision, KAPPA_PROBE};
 use crate::poly::dyadic::subdivide_dyadic;
 use crate::poly::{TriBall, TriBallDD, TriBezier};
 use crate::scalar::geo::Geo;
 use crate::solve::tribox::TriBox;
 use num_rational::BigRational;
-
-/// How a tri-box's polynomials were computed from the root triangle's.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
-pub enum Precision {
-    /// Float subdivision ([`TriBall::subdivide`]): radius a few ulps of the
-    /// root polynomial's largest coefficient.
-    Float,
-    /// Compensated subdivision ([`TriBallDD::subdivide`]): radius a few ulps
-    /// of the tri-box's own coefficients.
-    Compensated,
-    /// Exact subdivision of the rational input, then enclosed.
-    Exact,
-}
 
 /// Below this diameter a stalled tri-box is recomputed more precisely
 /// ([`Precision`]: float, then compensated, then exact): float balls carry
@@ -93,25 +81,6 @@ fn float_suffices(item: &Leaf, eps: f64) -> bool {
 /// the curves meet at a small angle the exact coefficients are what lets
 /// clipping continue at all.
 const NOISE_RATIO: f64 = 1e-9;
-
-/// The default [`Limits::max_exact`](super::Limits::max_exact).
-pub const MAX_EXACT_BOXES: usize = 64;
-
-/// The exact input, when there is one (rational coefficients).
-pub type ExactPair = [TriBezier<BigRational>; 2];
-
-/// What a run knows exactly about its input system.
-#[derive(Clone, Copy, Debug)]
-pub enum Exact<'a> {
-    /// Nothing beyond the input balls.
-    None,
-    /// The system is these rational polynomials (on the root triangle,
-    /// unscaled).
-    Rational(&'a ExactPair),
-    /// The input balls have radius 0: their float coefficients are the
-    /// system (its rationals are built only if an exact restart needs them).
-    Floats,
-}
 
 impl Ctx<'_> {
     /// The root pair in double-double: from the exact input when there is

@@ -1,9 +1,10 @@
 //! One step of Algorithm 1 ([`step`]) as a sequence of named phases.
 
-use super::precision::{at_working_precision, finer, restart_pair, restrict_pair};
-use super::{
-    at_level, newton_kappa, push_node, separating_combination, singular_floor, uniform_sign, Combination, Ctx, Leaf,
-    Precision, Probe, Run, SplitRule, EARLY_CERTIFY, EXACT_BELOW, FUTILE_PROBES, KAPPA_PROBE, SINGULAR_FLOOR,
+use super::estimates::{newton_kappa, separating_combination, uniform_sign, Combination};
+use super::precision::{at_working_precision, finer, restart_pair, restrict_pair, EXACT_BELOW};
+use super::state::{
+    at_level, push_node, singular_floor, Ctx, Leaf, Precision, Probe, Run, SplitRule, EARLY_CERTIFY, FUTILE_PROBES,
+    KAPPA_PROBE, SINGULAR_FLOOR,
 };
 use crate::poly::TriBall;
 use crate::scalar::geo::Geo;

@@ -21,11 +21,55 @@
 //! which only weakens the clip. If no candidate is possibly feasible, `R` is
 //! empty: the tri-box holds no root.
 
-use super::{Bounds, ClipBounds, Fat, Linear, Quadratic};
+use super::curves::{keep_or_empty, ClipBounds, Fat, Linear, Quadratic};
 use crate::scalar::geo::Geo;
 use crate::scalar::iv;
 use crate::scalar::Sign;
 use smallvec::SmallVec;
+
+pub(super) struct Bounds {
+    mins: [f64; 3],
+    any: bool,
+}
+
+impl Bounds {
+    pub(super) fn new() -> Self {
+        Self {
+            mins: [f64::INFINITY; 3],
+            any: false,
+        }
+    }
+
+    /// Whether [`Bounds::add`] of this candidate could change anything: it is
+    /// the first one, or it lowers one of the minima. Deciding this before
+    /// the (costlier) feasibility test changes no result.
+    pub(super) fn could_lower<S: Geo>(&self, s: S, t: S) -> bool {
+        let w = S::pt(1.0) - s - t;
+        !self.any || s.lower() < self.mins[0] || t.lower() < self.mins[1] || w.lower() < self.mins[2]
+    }
+
+    pub(super) fn add<S: Geo>(&mut self, s: S, t: S) {
+        let w = S::pt(1.0) - s - t;
+        self.any = true;
+        self.mins[0] = self.mins[0].min(s.lower());
+        self.mins[1] = self.mins[1].min(t.lower());
+        self.mins[2] = self.mins[2].min(w.lower());
+    }
+
+    /// No candidate can change the result any more: it is `Keep([0, 0, 0])`
+    /// (`finish` clamps the minima to `[0, 1]`).
+    pub(super) fn settled(&self) -> bool {
+        self.any && self.mins.iter().all(|&m| m <= 0.0)
+    }
+
+    pub(super) fn finish(self, rigorous: bool) -> ClipBounds {
+        if !self.any {
+            return ClipBounds::Empty;
+        }
+        let m = self.mins.map(|x| if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) });
+        keep_or_empty(m, rigorous)
+    }
+}
 
 /// A boundary line with what its candidates need, computed once per line:
 /// `src` tags the two sides of one strip (parallel by construction, never
@@ -177,7 +221,9 @@ pub(super) fn clip_in<G: Geo>(fats: &[Fat<G>]) -> ClipBounds {
 /// `src` of the tri-box's edges `s = 0`, `t = 0`, `w = 0` (fat curves use
 /// their index, tangency lines `usize::MAX`).
 const EDGE_S: usize = usize::MAX - 3;
+
 const EDGE_T: usize = usize::MAX - 2;
+
 const EDGE_W: usize = usize::MAX - 1;
 
 /// The constraints a candidate satisfies by construction: bit 0–2 the

@@ -1,7 +1,7 @@
 //! Bézier clipping's hull bounds ([`bezier_bounds`]) and the combination of
 //! two equations' bounds ([`intersect_bounds`]).
 
-use super::{keep_or_empty, ClipBounds};
+use super::curves::{keep_or_empty, ClipBounds};
 use crate::poly::{tri_indices, TriBall};
 use crate::scalar::iv;
 use smallvec::SmallVec;

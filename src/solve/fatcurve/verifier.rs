@@ -2,7 +2,7 @@
 //! (whose docs carry the soundness argument), the exit pieces ([`Piece`])
 //! its sweeps reduce to, and the budgets that bound their work.
 
-use super::{Fat, Linear, Quadratic};
+use super::curves::{Fat, Linear, Quadratic};
 use crate::scalar::geo::Geo;
 use std::cell::Cell;
 
