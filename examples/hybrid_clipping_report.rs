@@ -146,7 +146,7 @@ fn time_all(examples: &[Example], budget_ms: u64) -> Res<Vec<Vec<Vec<Timing>>>> 
                     samples.push(us);
                 }
                 samples.sort_by(f64::total_cmp);
-                let (boxes, restarts) = (sol.stats.run.boxes, sol.stats.run.exact_restarts);
+                let (boxes, restarts) = (sol.stats.boxes, sol.stats.exact_restarts);
                 per_lg.push(Timing {
                     us: samples[samples.len() / 2],
                     boxes,

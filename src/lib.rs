@@ -59,7 +59,10 @@ pub mod ray;
 pub mod scalar;
 pub mod solve;
 
+// The paper reproductions: the `tables` command, and the report example
+// through `internals` (which uses more of it than the command does).
 #[cfg(any(feature = "cli", feature = "internals"))]
+#[cfg_attr(not(feature = "internals"), allow(dead_code))]
 pub(crate) mod repro;
 #[cfg(any(test, feature = "internals"))]
 pub(crate) mod rng;

@@ -138,7 +138,7 @@ fn rectangle_edge_where_both_equations_may_vanish_is_one_strip() {
     let g = TensorBezier::on_unit_square(2, 1, g.to_vec()).unwrap();
     let sol = solve_rect(&f, &g, None, &RectOptions::default()).unwrap().solution;
     assert!(sol.complete, "{sol:?}");
-    assert!(sol.stats.run.boxes < 100, "{:?}", sol.stats);
+    assert!(sol.stats.boxes < 100, "{:?}", sol.stats);
     assert_eq!(sol.roots.len(), 1, "{sol:?}");
     assert!(sol.roots[0].bx.contains(0.75, 0.25));
     let strips: Vec<_> = sol
@@ -189,7 +189,7 @@ fn triple_roots_end_in_one_region_quickly() {
         // triple root are separated by proven-empty gaps of ~1e-11; regions
         // that nearly touch are joined into one.
         assert_eq!(sol.clusters.len(), 1, "{f}; {g}: {:?}", sol.clusters);
-        assert!(sol.stats.run.boxes < 50_000, "{:?}", sol.stats);
+        assert!(sol.stats.boxes < 50_000, "{:?}", sol.stats);
         if let Some((u, v)) = root {
             let (u, v) = (q(u), q(v));
             let inside = |lo: f64, hi: f64, x: &BigRational| {
@@ -611,7 +611,7 @@ fn referee_round7_regressions() {
             o
         };
         let sol = solve(&f, &g, Domain::Triangle, &opts).unwrap();
-        assert!(sol.complete && sol.stats.run.boxes < 100, "{method}: {:?}", sol.stats);
+        assert!(sol.complete && sol.stats.boxes < 100, "{method}: {:?}", sol.stats);
     }
     // Round 8: two cubics running within ~1e-10 of each other along an arc;
     // the finer singular floor of exact coefficients, unbounded, split that

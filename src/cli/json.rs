@@ -42,7 +42,7 @@ pub(super) struct SolutionJson<'a> {
     roots: Vec<RootJson<'a>>,
     clusters: Vec<ClusterJson<'a>>,
     leftovers: &'a [crate::solve::Leftover],
-    stats: StatsJson,
+    stats: StatsJson<'a>,
 }
 
 #[derive(Serialize)]
@@ -53,27 +53,14 @@ struct RootJson<'a> {
 }
 
 #[derive(Serialize)]
-struct StatsJson {
-    tri_boxes: usize,
-    clips: usize,
-    role_swaps: usize,
-    splits: usize,
-    sign_exclusions: usize,
-    clip_exclusions: usize,
-    krawczyk_calls: usize,
-    krawczyk_exclusions: usize,
-    leaves: usize,
-    outside_domain: usize,
-    max_level: usize,
-    probes: usize,
-    compensated_boxes: usize,
-    exact_boxes: usize,
+struct StatsJson<'a> {
+    #[serde(flatten)]
+    stats: &'a crate::solve::Stats,
     seconds: f64,
 }
 
 impl<'a> SolutionJson<'a> {
     pub(super) fn new(sol: &'a Solution, seconds: f64) -> Self {
-        let s = &sol.stats;
         Self {
             complete: sol.complete,
             roots: sol
@@ -91,20 +78,7 @@ impl<'a> SolutionJson<'a> {
                 .collect(),
             leftovers: &sol.leftovers,
             stats: StatsJson {
-                tri_boxes: s.run.boxes,
-                clips: s.run.clips,
-                role_swaps: s.run.role_swaps,
-                splits: s.run.splits,
-                sign_exclusions: s.run.sign_exclusions,
-                clip_exclusions: s.run.clip_exclusions,
-                krawczyk_calls: s.krawczyk_calls,
-                krawczyk_exclusions: s.krawczyk_exclusions,
-                leaves: s.leaves,
-                outside_domain: s.outside_domain,
-                max_level: s.max_level,
-                probes: s.run.probes,
-                compensated_boxes: s.run.compensated_boxes,
-                exact_boxes: s.run.exact_boxes,
+                stats: &sol.stats,
                 seconds,
             },
         }

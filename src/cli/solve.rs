@@ -151,11 +151,11 @@ fn solution_text(sol: &Solution, secs: f64) -> String {
     let s = &sol.stats;
     out += &format!(
         "{} tri-boxes, {} clips, {} splits, {} sign exclusions, {} clip exclusions, {} Krawczyk calls, {:.1} µs",
-        s.run.boxes,
-        s.run.clips,
-        s.run.splits,
-        s.run.sign_exclusions,
-        s.run.clip_exclusions,
+        s.boxes,
+        s.clips,
+        s.splits,
+        s.sign_exclusions,
+        s.clip_exclusions,
         s.krawczyk_calls,
         secs * 1e6
     );

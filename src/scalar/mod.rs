@@ -38,7 +38,9 @@ pub use convert::{rational_to_f64, rational_to_interval};
 pub use kernel::{Kernel, Scalar, Sign};
 
 pub(crate) use cache::{MatrixCache, MatrixKey};
-pub(crate) use convert::{interval, interval_contains_rational, point};
+#[cfg(any(test, feature = "internals"))]
+pub(crate) use convert::interval_contains_rational;
+pub(crate) use convert::{interval, point};
 pub(crate) use endpoints::{
     cached_endpoints, endpoint_net, endpoint_of, endpoints_of, from_endpoint, from_endpoints, store_endpoints, Arith,
     Endpoints,

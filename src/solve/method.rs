@@ -107,6 +107,7 @@ fn to_fat<G: Geo>(red: &Reduced, f: &TriBall) -> Option<Fat<G>> {
     }
 }
 
+#[cfg_attr(not(feature = "internals"), allow(dead_code))] // Used by tests and dev tools.
 /// `f̂ = ℓ f^α + (1 − ℓ) f^β` with `ℓ = ℓ0 + ℓ1 u + ℓ2 v` chosen (in f64) so
 /// that the Hessian of `f̂` vanishes at the point `c` (local barycentric):
 /// `A(c) ℓ = −∇²f^β(c)` with `A` of Eq. (8), written with `Δ = f^α − f^β`:
@@ -193,6 +194,7 @@ fn apply_paper(delta: &TriBall, fb: &TriBall, l: [f64; 3]) -> TriBall {
     TriBall::linear_combination(ell, delta, [1.0; 3], fb)
 }
 
+#[cfg_attr(not(feature = "internals"), allow(dead_code))] // Used by tests and dev tools.
 /// The generalised preprocessing used when Eq. (8)'s `A` is singular:
 /// `f̂ = ℓ f^α + m f^β` with two linear multipliers `ℓ = 1 + ℓ1 (u − u_c) + ℓ2 (v − v_c)`
 /// and `m = m0 + m1 (u − u_c) + m2 (v − v_c)` whose Hessian vanishes at `c`:

@@ -652,7 +652,7 @@ fn solve_pieces(pieces: Vec<Piece>, global: &System, domain: Domain, opts: &Solv
             (None, false) => Exact::None,
         };
         let run = driver::run::<GeoIv>(&ball(f), &ball(g), exact, &limits, &mut probe);
-        add_counters(&mut stats.run, &run.counters);
+        add_counters(&mut stats, &run.counters);
         stats.krawczyk_calls += run.counters.probes;
         stats.max_level = stats
             .max_level
@@ -775,7 +775,7 @@ fn certify_groups<P: Bivariate>(
     (roots, clusters)
 }
 
-fn add_counters(a: &mut Counters, b: &Counters) {
+fn add_counters(a: &mut Stats, b: &Counters) {
     // Destructured, so that a new counter cannot be forgotten here.
     let Counters {
         boxes,

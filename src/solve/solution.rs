@@ -4,7 +4,6 @@
 //! ([`rect`](crate::solve::rect)), and re-exported from [`crate::solve`].
 
 use crate::scalar::interval;
-use crate::solve::driver::Counters;
 use crate::solve::krawczyk::IBox;
 
 /// A closed axis-aligned box in `(u, v)`: `[u₀, u₁] × [v₀, v₁]`.
@@ -178,11 +177,36 @@ pub struct Leftover {
     pub triangle: Option<[[f64; 2]; 3]>,
 }
 
-/// Counters of a solve.
+/// Counters of a solve (summed over the triangles or boxes it ran on).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize), serde(default))]
 pub struct Stats {
-    /// Tri-boxes processed, clips, splits, exclusions (summed over triangles).
-    pub run: Counters,
+    /// Tri-boxes (or boxes) processed.
+    #[cfg_attr(feature = "serde", serde(rename = "tri_boxes"))]
+    pub boxes: usize,
+    /// Clips that shrank a region.
+    pub clips: usize,
+    /// 1-to-4 (or 1-to-2) splits.
+    pub splits: usize,
+    /// Regions discarded by check-sign.
+    pub sign_exclusions: usize,
+    /// Regions discarded because the fat regions (or hulls) do not meet.
+    pub clip_exclusions: usize,
+    /// Krawczyk probes during the iteration.
+    pub probes: usize,
+    /// Regions discarded by a probe.
+    pub probe_exclusions: usize,
+    /// Tri-boxes recomputed in compensated arithmetic (noisy or stalled).
+    pub compensated_restarts: usize,
+    /// Tri-boxes whose polynomials were computed in compensated arithmetic.
+    pub compensated_boxes: usize,
+    /// Stalled tri-boxes recomputed from the exact input.
+    pub exact_restarts: usize,
+    /// Tri-boxes whose polynomials were computed from the exact input.
+    pub exact_boxes: usize,
+    /// Second hybrid clips with the equations' roles swapped.
+    pub role_swaps: usize,
     /// Krawczyk operator evaluations.
     pub krawczyk_calls: usize,
     /// Final tri-boxes handed to certification.
@@ -216,7 +240,9 @@ pub struct Stats {
 ///
 /// These hold for every system whose coefficients lie in the input
 /// enclosures; for exact (rational) input, for that system.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Solution {
     /// See the contract.
     pub complete: bool,

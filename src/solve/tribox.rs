@@ -160,6 +160,7 @@ impl TriBox {
         }
     }
 
+    #[cfg_attr(not(feature = "internals"), allow(dead_code))] // Used by tests and dev tools.
     /// Barycentric coordinates of the vertices w.r.t. the root triangle, as
     /// intervals (exact `s`, `t`; `1 − s − t` enclosed).
     pub fn bary_intervals(&self) -> [[Interval; 3]; 3] {

@@ -467,6 +467,7 @@ struct Quad<G> {
     four_alpha: G,
 }
 
+#[cfg_attr(not(feature = "internals"), allow(dead_code))] // Used by tests and dev tools.
 /// Enclosures of every root of `α x² + β x + γ` in `[0, 1]` (for all members
 /// of the coefficient enclosures). When both `α` and `β` may vanish, the
 /// whole of `[0, 1]` is returned.
@@ -486,6 +487,7 @@ pub fn quadratic_roots_in_unit<G: Geo>(alpha: G, beta: G, gamma: G) -> Vec<G> {
     out
 }
 
+#[cfg_attr(not(feature = "internals"), allow(dead_code))] // Used by tests and dev tools.
 /// [`quadratic_roots_in_unit`], each root handed to `keep`; stops once `keep`
 /// returns `true`.
 fn roots_in_unit<G: Geo>(eq: &Quad<G>, keep: &mut impl FnMut(G) -> bool) {

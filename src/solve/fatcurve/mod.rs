@@ -32,6 +32,7 @@ mod verifier;
 
 use crate::scalar::geo::Geo;
 use candidates::clip_in;
+#[cfg(any(test, feature = "internals"))]
 pub use candidates::quadratic_roots_in_unit;
 use curves::keep_or_empty;
 pub use curves::{ClipBounds, Fat, Linear, Quadratic};

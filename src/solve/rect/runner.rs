@@ -115,6 +115,7 @@ pub struct RectSolution {
     /// Roots, clusters, leftovers and counters.
     pub solution: Solution,
     /// [`Query::Any`] found its root and stopped.
+    #[cfg_attr(not(feature = "internals"), allow(dead_code))]
     pub stopped_early: bool,
 }
 
@@ -374,11 +375,11 @@ impl Runner {
             if self.stopped_early {
                 break;
             }
-            if self.stats.run.boxes >= self.opts.max_boxes {
+            if self.stats.boxes >= self.opts.max_boxes {
                 queue.push(node);
                 return queue;
             }
-            self.stats.run.boxes += 1;
+            self.stats.boxes += 1;
             match self.step(node) {
                 Step::Done => {}
                 Step::Continue(n) => queue.push(n),
@@ -401,13 +402,13 @@ impl Runner {
         let (f, rest) = node.c.split_at(sh.len);
         let g = &rest[..sh.len];
         if one_signed(f) || one_signed(g) {
-            self.stats.run.sign_exclusions += 1;
+            self.stats.sign_exclusions += 1;
             return Step::Done;
         }
         // Nearest: once a root is certified, a box whose objective is
         // provably above it cannot hold a nearer root.
         if self.opts.query == Query::Nearest && self.best < f64::INFINITY && self.key_over(node.ibox()).0 > self.best {
-            self.stats.run.sign_exclusions += 1;
+            self.stats.sign_exclusions += 1;
             return Step::Done;
         }
         let w = self.rel_width(&node);
@@ -438,13 +439,13 @@ impl Runner {
                         for (d, &(a, b)) in spans.iter().enumerate() {
                             clip(&mut node, sh, d, a, b);
                         }
-                        self.stats.run.clips += 1;
+                        self.stats.clips += 1;
                         node.id = self.push_trace(node.id, node.outer());
                         return Step::Continue(node);
                     }
                 }
                 Verdict::NoRoot => {
-                    self.stats.run.probe_exclusions += 1;
+                    self.stats.probe_exclusions += 1;
                     return Step::Done;
                 }
                 Verdict::Undecided(()) => {}
@@ -462,14 +463,14 @@ impl Runner {
         };
         let mut spans = match fat {
             FatLineClip::Empty => {
-                self.stats.run.clip_exclusions += 1;
+                self.stats.clip_exclusions += 1;
                 return Step::Done;
             }
             FatLineClip::Spans(s) => s,
             FatLineClip::Parallel => match hull_spans(&node.c, sh) {
                 Some(s) => s,
                 None => {
-                    self.stats.run.clip_exclusions += 1;
+                    self.stats.clip_exclusions += 1;
                     return Step::Done;
                 }
             },
@@ -491,7 +492,7 @@ impl Runner {
         // Stalled: clip again with preconditioned equations (`rect` docs).
         match preconditioned_spans(&node.c, sh) {
             None => {
-                self.stats.run.clip_exclusions += 1;
+                self.stats.clip_exclusions += 1;
                 return Step::Done;
             }
             Some(spans) => {
@@ -512,7 +513,7 @@ impl Runner {
             self.leaf(&node);
             return Step::Done;
         }
-        self.stats.run.splits += 1;
+        self.stats.splits += 1;
         let d = usize::from(w[1] > w[0]);
         let (mut a, mut b) = split(&node, sh, d);
         a.id = self.push_trace(node.id, a.outer());
@@ -559,7 +560,7 @@ impl Runner {
             }
         }
         if area < 1.0 {
-            self.stats.run.clips += 1;
+            self.stats.clips += 1;
             node.id = self.push_trace(node.id, node.outer());
         }
         area
