@@ -334,6 +334,60 @@ proptest! {
         prop_assert_eq!(any.iter().any(Hit::is_certified), cr.iter().any(Hit::is_certified));
     }
 
+    /// The `t` range, on every route and query: a hit of `[t0, t1]` is a hit
+    /// of the whole line (boxes overlap), and a certified hit of the whole
+    /// line whose `t` box lies inside the range is a certified hit of the
+    /// range (`All`), none whose box lies outside it is reported; `Nearest`
+    /// and `Any` return hits of the range only.
+    #[test]
+    fn t_ranges_select_hits(
+        m in 1usize..=3,
+        n in 1usize..=2,
+        offsets in vec(-1.0f64..1.0, 48),
+        o in prop::array::uniform3(-0.5f64..1.5),
+        target in prop::array::uniform2(0.0f64..1.0),
+        range in prop::array::uniform2(-2.0f64..2.0),
+        route in prop::sample::select(vec![SquareRoute::Rect, SquareRoute::RectFatLine, SquareRoute::Triangles]),
+    ) {
+        let patch: Patch = tensor_patch(m, n, &offsets, None).into();
+        let origin = DVec3::new(o[0], o[1], 0.5 * o[2]);
+        let aim = DVec3::new(target[0], target[1], 0.0);
+        let ray = Ray::new(origin, aim - origin).unwrap();
+        let [t0, t1] = if range[0] <= range[1] { range } else { [range[1], range[0]] };
+        let hits = |opts: RayOptions| match intersect(&patch, &ray, &opts.with_route(route)).unwrap() {
+            RayOutcome::Hits(h) => Some(h.hits),
+            RayOutcome::Degenerate(_) => None,
+        };
+        let Some(line) = hits(RayOptions::default().with_t_range(f64::NEG_INFINITY, f64::INFINITY)) else {
+            return Ok(());
+        };
+        let Some(ranged) = hits(RayOptions::default().with_t_range(t0, t1)) else {
+            return Ok(());
+        };
+        let overlap = |a: &Hit, b: &Hit| a.bx.u[0] <= b.bx.u[1] && b.bx.u[0] <= a.bx.u[1] && a.bx.v[0] <= b.bx.v[1] && b.bx.v[0] <= a.bx.v[1];
+        for h in &ranged {
+            prop_assert!(line.iter().any(|x| overlap(h, x)), "{:?} not on the line: {:?}", h, line);
+            prop_assert!(h.bx.t[1] >= t0 && h.bx.t[0] <= t1, "{:?} outside [{}, {}]", h, t0, t1);
+            if h.is_certified() {
+                prop_assert!(h.bx.t[0] >= t0 && h.bx.t[1] <= t1, "certified {:?} not proven in [{}, {}]", h, t0, t1);
+            }
+        }
+        for x in line.iter().filter(|x| x.is_certified()) {
+            if x.bx.t[0] > t0 && x.bx.t[1] < t1 {
+                prop_assert!(ranged.iter().any(|h| h.is_certified() && overlap(h, x)), "{:?} lost by [{}, {}]: {:?}", x, t0, t1, ranged);
+            }
+        }
+        for query in [Query::Nearest, Query::Any] {
+            let Some(q) = hits(RayOptions::default().with_t_range(t0, t1).with_query(query)) else { continue };
+            for h in &q {
+                prop_assert!(ranged.iter().any(|x| overlap(h, x)), "{:?}: {:?} not in {:?}", query, h, ranged);
+            }
+            if ranged.iter().any(Hit::is_certified) {
+                prop_assert!(q.iter().any(Hit::is_certified), "{:?} found nothing in {:?}", query, ranged);
+            }
+        }
+    }
+
     /// Patches with a collapsed edge (the whole row `i = 0` one point: a
     /// triangle-like tensor patch, whose normal vanishes along that edge)
     /// and rays aimed at random parameters, near the collapsed edge too:

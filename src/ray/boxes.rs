@@ -12,20 +12,21 @@ use crate::solve::rect::{eval_box, solve_rect_iv, RectClip, RectOptions, RectPro
 use crate::solve::{Box2, SquareRoute};
 
 /// The objective floor and the query handed to the box solver. Its objective
-/// `h/W` has the sign of `t`, so a range starting at 0 is the floor `0`
-/// exactly; any other finite start would need a rigorous bound on both sides
-/// of the rounding, so the solve then lists every root and the hit level
-/// filters and selects. An `Any` query with a finite end asks the solver for
-/// the nearest root instead of the first: the first may lie past the end.
-fn solver_query(opts: &RayOptions) -> (Option<f64>, Query) {
+/// `h/W = t·|d̃|²/2^s` has the sign of `t`, so the floor of `t_min` is
+/// `t_min·|d̃|²/2^s`, enclosed (a point for `t_min = 0`); none for
+/// `t_min = −∞`. An `Any` query with a finite end asks the solver for the
+/// nearest root instead of the first: the first may lie past the end.
+fn solver_query(opts: &RayOptions, d2: Iv, scale: f64) -> (Option<[f64; 2]>, Query) {
     let [lo, hi] = opts.t_range;
-    let (key_min, mut query) = if lo == 0.0 {
-        (Some(0.0), opts.query)
-    } else if lo == f64::NEG_INFINITY {
-        (None, opts.query)
+    let key_min = if lo == 0.0 {
+        Some([0.0, 0.0])
+    } else if lo.is_finite() {
+        let k = Iv::point(lo).mul(d2).scale(1.0 / scale);
+        Some([k.lo, k.hi])
     } else {
-        (None, Query::All)
+        None
     };
+    let mut query = opts.query;
     if query == Query::Any && hi.is_finite() {
         query = Query::Nearest;
     }
@@ -94,7 +95,8 @@ pub(super) fn intersect_rect(p: &TensorPatch, ray: &Ray, opts: &RayOptions) -> R
     }
     let den: Option<Vec<Iv>> = weights.map(|_| p.ivnet().iter().map(|h| h[3]).collect());
     let unit = [[Iv::point(0.0), Iv::point(1.0)]; 2];
-    let (key_min, query) = solver_query(opts);
+    let d2 = dot(&dt, &dt);
+    let (key_min, query) = solver_query(opts, d2, scale);
     let problem = RectProblem {
         m,
         n,
@@ -120,7 +122,6 @@ pub(super) fn intersect_rect(p: &TensorPatch, ray: &Ray, opts: &RayOptions) -> R
         Err(Error::Degenerate(_)) => return Ok(RayOutcome::Degenerate(Degeneracy::ZeroEquation)),
         Err(e) => return Err(e),
     };
-    let d2 = dot(&dt, &dt);
     let t_of = |bx: Box2| {
         let num = eval_box(&h, m, n, bx.u, bx.v);
         let w = den.as_ref().map_or(Iv::point(1.0), |w| eval_box(w, m, n, bx.u, bx.v));

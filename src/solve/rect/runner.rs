@@ -70,8 +70,11 @@ pub struct RectOptions {
     pub max_boxes: usize,
     /// All roots, the nearest, or any.
     pub query: Query,
-    /// Drop regions where the objective is provably below this value.
-    pub key_min: Option<f64>,
+    /// The floor of the objective, enclosed: `[lo, hi]` holds the exact
+    /// floor (a point when it is a float). Regions whose objective is
+    /// provably below `lo` are dropped; a root counts for the queries only
+    /// when its objective is provably at least `hi`.
+    pub key_min: Option<[f64; 2]>,
     /// The clipping method.
     pub clip: RectClip,
 }
@@ -275,7 +278,7 @@ pub(crate) fn solve_rect_iv(p: RectProblem, opts: &RectOptions) -> Result<RectSo
     let mut buf = Vec::with_capacity(shape.polys * len);
     buf.extend_from_slice(&p.f);
     buf.extend_from_slice(&p.g);
-    if let (Some(num), Some(k_min)) = (&p.num, opts.key_min) {
+    if let (Some(num), Some([k_min, _])) = (&p.num, opts.key_min) {
         // k = num/den with den > 0: k < k_min everywhere if every ratio is.
         let below = match &p.den {
             Some(den) => num.iter().zip(den).all(|(a, d)| a.div(*d).hi < k_min),
@@ -577,7 +580,7 @@ impl Runner {
         if inside && self.opts.query != Query::All {
             // (Without an objective every root counts as above the floor.)
             let key = self.key_over(bx);
-            if self.opts.key_min.is_none_or(|m| key.0 >= m) {
+            if self.opts.key_min.is_none_or(|[_, m]| key.0 >= m) {
                 self.best = self.best.min(key.1);
                 if self.opts.query == Query::Any {
                     self.stopped_early = true;
