@@ -26,8 +26,8 @@
 //! 2. [`poly`] — Bernstein–Bézier algebra written once over any kernel:
 //!    [`UniBezier`], [`TriBezier`], [`TensorBezier`], exact [`Polynomial`]s
 //!    and the expression parser (inside: ball polynomials, L2 reduction).
-//! 3. [`solve`] — the certified solver: [`solve()`](solve::solve),
-//!    [`solve_bb`](solve::solve_bb) and the [`Solution`] contract (inside:
+//! 3. [`solve`](mod@solve) — the certified solver: [`solve::solve`],
+//!    [`solve::solve_bb`] and the [`Solution`] contract (inside:
 //!    triangle clipping — Bézier, linear, hybrid — with verified clips, box
 //!    clipping for tensor systems, Krawczyk certificates, exact settling on
 //!    the boundary).

@@ -138,7 +138,7 @@ impl Polynomial {
         }
     }
 
-    /// `self · other`; errors if the total degree would exceed [`MAX_DEGREE`].
+    /// `self · other`; errors if the total degree would exceed 200.
     pub fn mul(&self, other: &Self) -> Result<Self> {
         let deg = self.total_degree() + other.total_degree();
         if deg > MAX_DEGREE && !self.is_zero() && !other.is_zero() {
@@ -163,7 +163,7 @@ impl Polynomial {
         Ok(out)
     }
 
-    /// `self^e` by repeated squaring; errors past [`MAX_DEGREE`].
+    /// `self^e` by repeated squaring; errors past total degree 200.
     pub fn pow(&self, e: u32) -> Result<Self> {
         let deg = u64::from(self.total_degree()) * u64::from(e);
         if deg > u64::from(MAX_DEGREE) {
@@ -207,7 +207,7 @@ impl Polynomial {
     }
 
     /// Errors with [`Error::TooLarge`] when an exact conversion would take more
-    /// than [`MAX_CONVERSION_WORK`] rational products (seconds of work), so
+    /// than 4,000,000 rational products (seconds of work), so
     /// that callers fail fast on inputs like `(u+v+1)^100`.
     pub fn check_conversion_cost(&self, square: bool) -> Result<()> {
         let cost = if square {
@@ -308,7 +308,7 @@ impl Polynomial {
     ///
     /// Expands `C(n; i,j,k) u^i v^j w^k` with
     /// `w^k = Σ_{p+q≤k} (−1)^{p+q} C(k; p,q,k−p−q) u^p v^q` term by term. The
-    /// work is bounded by the input's size, so [`MAX_DEGREE`] (a guard against
+    /// work is bounded by the input's size, so the degree limit of 200 (a guard against
     /// runaway *parsing*) does not apply: going through [`Self::pow`] here used
     /// to panic for degrees above it.
     pub fn from_triangle(f: &TriBezier<BigRational>) -> Self {

@@ -1,26 +1,5 @@
-//! Reads polynomial expressions in `u` and `v` into exact [`Polynomial`]s.
-//!
-//! # Grammar
-//! ```text
-//! expr   := term (('+' | '-') term)*
-//! term   := unary (('*' | '/') unary)*
-//! unary  := ('+' | '-') unary | power
-//! power  := atom ('^' integer)?
-//! atom   := number | 'u' | 'v' | '(' expr ')'
-//! number := digits ['.' digits] [('e' | 'E') ['+' | '-'] digits]
-//! ```
-//! Numbers are read exactly (`0.1` is 1/10, `2.5e-3` is 1/400). Division is by
-//! non-zero constants only. `-u^2` is `-(u^2)`. Errors name what is wrong and the
-//! byte offset; nothing panics. Limits: nesting depth 200, exponents and
-//! total degree up to [`super::monomial::MAX_DEGREE`], decimal
-//! exponents up to ±10000.
-//!
-//! ```
-//! use rootclip::parse_polynomial;
-//! let p = parse_polynomial("10*(u-1/2)*(u-1/4)*(u-1/8) + 1/4 - v").unwrap();
-//! assert_eq!(p.total_degree(), 3);
-//! assert!(parse_polynomial("u^-1").is_err());
-//! ```
+//! Reads polynomial expressions in `u` and `v` into exact [`Polynomial`]s
+//! ([`parse_polynomial`]).
 
 use super::monomial::{Polynomial, MAX_DEGREE};
 use crate::error::{Error, Result};
@@ -31,7 +10,29 @@ use num_traits::{Num, Zero};
 const MAX_DEPTH: usize = 200;
 const MAX_DECIMAL_EXPONENT: i64 = 10_000;
 
-/// Parses an expression in `u` and `v`; see the module docs for the grammar.
+/// Parses an expression in `u` and `v` into an exact [`Polynomial`].
+///
+/// # Grammar
+/// ```text
+/// expr   := term (('+' | '-') term)*
+/// term   := unary (('*' | '/') unary)*
+/// unary  := ('+' | '-') unary | power
+/// power  := atom ('^' integer)?
+/// atom   := number | 'u' | 'v' | '(' expr ')'
+/// number := digits ['.' digits] [('e' | 'E') ['+' | '-'] digits]
+/// ```
+/// Numbers are read exactly (`0.1` is 1/10, `2.5e-3` is 1/400). Division is by
+/// non-zero constants only. `-u^2` is `-(u^2)`. Errors name what is wrong and the
+/// byte offset; nothing panics. Limits: nesting depth 200, exponents and
+/// total degree up to 200, decimal
+/// exponents up to ±10000.
+///
+/// ```
+/// use rootclip::parse_polynomial;
+/// let p = parse_polynomial("10*(u-1/2)*(u-1/4)*(u-1/8) + 1/4 - v").unwrap();
+/// assert_eq!(p.total_degree(), 3);
+/// assert!(parse_polynomial("u^-1").is_err());
+/// ```
 pub fn parse_polynomial(src: &str) -> Result<Polynomial> {
     let mut p = Parser {
         src: src.as_bytes(),

@@ -76,7 +76,15 @@ impl<S: Scalar> TensorBezier<S> {
         })
     }
 
-    /// A polynomial on the unit square.
+    /// A polynomial on the unit square, `(m+1)(n+1)` coefficients row-major
+    /// (`c_ij` of `B^m_i(u) B^n_j(v)` at `i·(n+1) + j`).
+    ///
+    /// ```
+    /// use rootclip::TensorBezier;
+    /// let f = TensorBezier::on_unit_square(1, 1, vec![0.0, 1.0, 2.0, 3.0])?; // f = 2u + v
+    /// assert_eq!(f.eval(0.5, 0.25), 1.25);
+    /// # Ok::<(), rootclip::Error>(())
+    /// ```
     pub fn on_unit_square(m: usize, n: usize, coeffs: Vec<S>) -> Result<Self> {
         Self::new(m, n, coeffs, [S::zero(), S::one()], [S::zero(), S::one()])
     }

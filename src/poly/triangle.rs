@@ -51,7 +51,17 @@ pub struct TriReduction<S> {
 
 impl<S: Scalar> TriBezier<S> {
     /// A polynomial from its coefficients in storage order (`j` outer, `i`
-    /// inner). Errors on the wrong count or a non-finite coefficient.
+    /// inner: [`tri_indices`](crate::poly::tri_indices)). Errors on the wrong
+    /// count or a non-finite coefficient.
+    ///
+    /// ```
+    /// use rootclip::TriBezier;
+    /// // Degree 1: the coefficients at the vertices w = 1, u = 1, v = 1.
+    /// let f = TriBezier::new(1, vec![1.0, 3.0, 5.0])?; // f = 1 + 2u + 4v
+    /// assert_eq!(f.eval(0.25, 0.5), 3.5);
+    /// assert!(TriBezier::new(2, vec![1.0, 2.0]).is_err());
+    /// # Ok::<(), rootclip::Error>(())
+    /// ```
     pub fn new(degree: usize, coeffs: Vec<S>) -> Result<Self> {
         if coeffs.len() != tri_len(degree) {
             return Err(Error::Shape(format!(
@@ -162,7 +172,7 @@ impl<S: Scalar> TriBezier<S> {
 
     /// The four sub-triangles of the 1-to-4 midpoint split (Liu et al. 2016,
     /// §2.3.5), in the order: corner at `V1`, corner at `V2`, corner at `V3`,
-    /// middle. Their vertices are [`split4_vertices`]; all four keep the
+    /// middle (vertices at the edge midpoints); all four keep the
     /// parent's orientation.
     pub fn split4(&self) -> [Self; 4] {
         split4_vertices::<S>().map(|v| self.subdivide(&v))
@@ -292,7 +302,7 @@ impl<S: Scalar> TriBezier<S> {
     ///
     /// The normalized L2 norm (Eq. (10)) is invariant under affine maps, so the
     /// projection is one matrix per `(n, k)` — `G_kk⁻¹ G_kn` from exact Gram
-    /// matrices of the Bernstein bases (see [`l2`]) — computed once in
+    /// matrices of the Bernstein bases — computed once in
     /// rationals and cached per kernel.
     ///
     /// Exact in the rational kernel (and then `δ = 0` iff `f` has degree ≤ `k`).

@@ -50,6 +50,13 @@ impl<S: Scalar> UniBezier<S> {
     }
 
     /// A polynomial on `[0, 1]`.
+    ///
+    /// ```
+    /// use rootclip::UniBezier;
+    /// let f = UniBezier::on_unit(vec![1.0, -1.0, 1.0])?; // (1 − x)² − 2x(1 − x) + x²
+    /// assert_eq!(f.eval(0.5), 0.0);
+    /// # Ok::<(), rootclip::Error>(())
+    /// ```
     pub fn on_unit(coeffs: Vec<S>) -> Result<Self> {
         Self::new(coeffs, [S::zero(), S::one()])
     }

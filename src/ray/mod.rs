@@ -82,7 +82,7 @@ use rayon::prelude::*;
 ///
 /// `complete` keeps its meaning for the hits the query asks for. Each hit is
 /// certified or says why not ([`HitStatus`]); see the module docs for the
-/// reduction. Errors: invalid options ([`Error::InvalidOption`]).
+/// reduction. Errors: invalid options ([`Error::InvalidOption`](crate::Error::InvalidOption)).
 ///
 /// ```
 /// use rootclip::glam::DVec3;

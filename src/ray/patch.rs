@@ -184,6 +184,19 @@ impl TriPatch {
     /// order of Eq. (2) and optional weights in the same order. Errors: wrong
     /// counts ([`Error::Shape`]), NaN or ±∞ ([`Error::NonFinite`]), a weight
     /// `≤ 0` ([`Error::Degenerate`]).
+    ///
+    /// ```
+    /// use rootclip::glam::DVec3;
+    /// use rootclip::ray::TriPatch;
+    /// // A quadratic dome over the unit triangle: corners on z = 0, edge midpoints raised.
+    /// let pts = vec![
+    ///     DVec3::new(0.0, 0.0, 0.0), DVec3::new(0.5, 0.0, 0.5), DVec3::new(1.0, 0.0, 0.0),
+    ///     DVec3::new(0.0, 0.5, 0.5), DVec3::new(0.5, 0.5, 0.5), DVec3::new(0.0, 1.0, 0.0),
+    /// ];
+    /// let dome = TriPatch::new(2, pts, None)?;
+    /// assert!((dome.eval(1.0 / 3.0, 1.0 / 3.0).z - 1.0 / 3.0).abs() < 1e-15);
+    /// # Ok::<(), rootclip::Error>(())
+    /// ```
     pub fn new(degree: usize, points: Vec<DVec3>, weights: Option<Vec<f64>>) -> Result<Self> {
         if degree == 0 || degree > MAX_DEGREE {
             return Err(Error::Shape(format!(
@@ -246,6 +259,22 @@ impl TriPatch {
 impl TensorPatch {
     /// A patch of bidegree `(m, n)`, `m, n ≥ 1`, from `(m+1)(n+1)` row-major
     /// control points and optional weights. Errors as [`TriPatch::new`].
+    ///
+    /// ```
+    /// use rootclip::glam::DVec3;
+    /// use rootclip::ray::TensorPatch;
+    /// // A rational quarter cylinder x² + z² = 1, z ≥ 0, x ≥ 0, along y ∈ [0, 2].
+    /// let pts = vec![
+    ///     DVec3::new(1.0, 0.0, 0.0), DVec3::new(1.0, 2.0, 0.0),
+    ///     DVec3::new(1.0, 0.0, 1.0), DVec3::new(1.0, 2.0, 1.0),
+    ///     DVec3::new(0.0, 0.0, 1.0), DVec3::new(0.0, 2.0, 1.0),
+    /// ];
+    /// let w = vec![1.0, 1.0, 0.5f64.sqrt(), 0.5f64.sqrt(), 1.0, 1.0];
+    /// let cyl = TensorPatch::new(2, 1, pts, Some(w))?;
+    /// let p = cyl.eval(0.3, 0.5);
+    /// assert!((p.x * p.x + p.z * p.z - 1.0).abs() < 1e-15 && (p.y - 1.0).abs() < 1e-15);
+    /// # Ok::<(), rootclip::Error>(())
+    /// ```
     pub fn new(m: usize, n: usize, points: Vec<DVec3>, weights: Option<Vec<f64>>) -> Result<Self> {
         if m == 0 || n == 0 || m > MAX_DEGREE || n > MAX_DEGREE {
             return Err(Error::Shape(format!(
@@ -347,7 +376,7 @@ impl TensorPatch {
 
     /// `(S, ∂S/∂u, ∂S/∂v)` in `f64` in one pass: de Casteljau with
     /// derivatives on each homogeneous coordinate (no allocation for degrees
-    /// up to [`MAX_DEGREE`]), then the quotient rule.
+    /// up to the degree limit of 40), then the quotient rule.
     pub fn frame(&self, u: f64, v: f64) -> (DVec3, DVec3, DVec3) {
         let (m, n) = self.degree;
         let j: [[f64; 3]; 4] = std::array::from_fn(|k| tensor_jet_f64(self.net.c[k].coeffs(), m, n, u, v));

@@ -17,6 +17,15 @@ impl Ray {
     /// A ray from `origin` along `dir` (not normalized; `t` is measured in
     /// units of `dir`). Errors: NaN/∞ ([`Error::NonFinite`]), zero direction
     /// ([`Error::Degenerate`]).
+    ///
+    /// ```
+    /// use rootclip::glam::DVec3;
+    /// use rootclip::ray::Ray;
+    /// let ray = Ray::new(DVec3::ZERO, DVec3::new(0.0, 0.0, 2.0))?;
+    /// assert_eq!(ray.at(1.5), DVec3::new(0.0, 0.0, 3.0));
+    /// assert!(Ray::new(DVec3::ZERO, DVec3::ZERO).is_err());
+    /// # Ok::<(), rootclip::Error>(())
+    /// ```
     pub fn new(origin: DVec3, dir: DVec3) -> Result<Self> {
         if !origin.is_finite() || !dir.is_finite() {
             return Err(Error::NonFinite(format!(
@@ -50,7 +59,8 @@ impl Ray {
 /// More undecided regions than this make a ray [`Degeneracy::Unresolved`].
 pub(crate) const MAX_CLUSTERS: usize = 16;
 
-/// Options of [`intersect`] and [`intersect_batch`].
+/// Options of [`intersect`](super::intersect) and
+/// [`intersect_batch`](super::intersect_batch).
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
 #[cfg_attr(

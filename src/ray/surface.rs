@@ -5,7 +5,7 @@ use super::patch::{TensorPatch, TriPatch};
 use glam::DVec3;
 
 /// A Bézier patch of either kind, or a B-spline/NURBS surface (intersected
-/// piece by piece, see [`super::bspline`]).
+/// piece by piece). Degrees are at most 40 in each direction.
 // Patches are built once and borrowed by every ray: the size difference of
 // the variants costs nothing, boxing would cost an indirection per ray.
 #[allow(clippy::large_enum_variant)]

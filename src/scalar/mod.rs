@@ -6,8 +6,8 @@
 //! | kernel | role | rounding |
 //! |---|---|---|
 //! | `f64` | fast *proposals* (approximants, Newton midpoints) | round-to-nearest, no guarantee |
-//! | [`Interval`] (inari) | rigorous *enclosures*: every operation rounds outward, so the exact result of the same computation on any members of the inputs lies in the output | outward |
-//! | [`BigRational`] | exact reference arithmetic (oracles, tests, parsing) | exact |
+//! | [`Interval`](inari::Interval) (inari) | rigorous *enclosures*: every operation rounds outward, so the exact result of the same computation on any members of the inputs lies in the output | outward |
+//! | [`BigRational`](num_rational::BigRational) | exact reference arithmetic (oracles, tests, parsing) | exact |
 //!
 //! inari implements no `num-traits`, so the trait is ours (the same choice the
 //! `geo`/`robust` crates make for their kernels).

@@ -1,21 +1,22 @@
 //! The certified solver: every root of `f(u, v) = g(u, v) = 0` over the unit
-//! triangle or the unit square.
+//! triangle or the unit square, with the [`Solution`] contract.
+//!
+//! * [`solve`] takes exact polynomials ([`Polynomial`], e.g. from
+//!   [`parse_polynomial`](crate::parse_polynomial)); [`solve_bb`] takes
+//!   Bernstein–Bézier coefficients in `f64`, exact rationals or intervals.
+//! * [`SolveOptions`] chooses the clipping [`Method`] (Liu et al. 2016:
+//!   Bézier, linear, hybrid with and without preprocessing), `eps`, the
+//!   budgets and, for the square, the [`SquareRoute`].
 //!
 //! Floating point proposes; only rigorous arithmetic discards or certifies:
-//! * the BB coefficients on every tri-box are ball polynomials
-//!   ([`TriBall`](crate::poly::TriBall): float coefficients and one rigorous
-//!   radius, from a-priori bounds of the float work) computed from the input
-//!   for exactly the reported (`f64`) vertices ([`tribox`]); where rounding
-//!   would limit a small tri-box, in compensated (double-double) arithmetic
-//!   or exactly from the rational input ([`driver::Precision`]);
-//! * fat-curve widths are rigorous upper bounds, clip bounds are minima over
-//!   enclosed critical points ([`fatcurve`]), check-sign needs every
-//!   coefficient interval strictly on one side of 0 ([`driver`]);
-//! * every final tri-box goes through Krawczyk's operator on the original
-//!   system ([`krawczyk`]).
-//!
-//! Methods: [`Method`] (Liu et al. 2016: Bézier, linear, hybrid with and
-//! without preprocessing).
+//! the coefficients on every tri-box carry one rigorous radius from a-priori
+//! bounds of the float work (recomputed in double-double or exact arithmetic
+//! where rounding would limit a small tri-box); fat-curve widths are rigorous
+//! upper bounds and every clip is proven sliver by sliver; check-sign needs
+//! every coefficient strictly on one side of 0; every final region goes
+//! through Krawczyk's operator on the original system, and roots near the
+//! boundary of an exact system are settled in exact arithmetic. The whole
+//! argument, step by step, is in `docs/rigor.md` of the repository.
 
 pub(crate) mod degenerate;
 pub(crate) mod driver;

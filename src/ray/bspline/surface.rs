@@ -98,7 +98,7 @@ impl BsplineSurface {
     /// points or weights ([`Error::Shape`]); NaN or ±∞ in knots, points or
     /// weights, or an overflowing `w·P` ([`Error::NonFinite`]); an empty
     /// domain or a weight `≤ 0` ([`Error::Degenerate`]); a refined net above
-    /// [`MAX_REFINED_NET`] entries ([`Error::TooLarge`]).
+    /// 4,000,000 entries ([`Error::TooLarge`]).
     ///
     /// ```
     /// use glam::DVec3;
