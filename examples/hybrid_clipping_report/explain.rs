@@ -10,7 +10,7 @@ use rootclip::internals::driver::{self, Limits, Probe};
 use rootclip::internals::fatcurve::ClipBounds;
 use rootclip::internals::geo::GeoIv;
 use rootclip::internals::method::{clip_bounds, preprocess, preprocess_general};
-use rootclip::internals::solve_triangle;
+use rootclip::solve::solve_bb;
 use rootclip::internals::tribox::TriBox;
 use rootclip::{Scalar, TriBezier};
 
@@ -319,7 +319,7 @@ triangles whose vertices are adjacent floats, which no computation can certify:\
     let sol = &ctx.runs[k5][midx(Method::Hc)];
     let theta = crossing_angle(ex, ex.tracked_root);
     let (f, g, _) = system(ex);
-    let enclosed = solve_triangle(&f, &g, &repro::table_options(Method::Hc, 1e-14, Variant::DEFAULT))?;
+    let enclosed = solve_bb(&f, &g, &repro::table_options(Method::Hc, 1e-14, Variant::DEFAULT))?;
     let lv = |sol: &Solution, lg: i32| opt(sol.recursions(10f64.powi(lg)));
     let path = |sol: &Solution| join(repro::tracked_diameters(sol, ex.tracked_root).iter().map(|&d| sci(d)));
     let _ = write!(
@@ -334,8 +334,8 @@ stalled one below `EXACT_BELOW` = 1e-6 from the exact rational input when there 
 on this system, tracked root:\n\n\
 | input | compensated restarts | exact restarts | tri-boxes | levels to 1e-12 | levels to 1e-14 | diameters by level |\n|---|---:|---:|---:|---:|---:|---|\n\
 | exact rational (`solve`) | {xc} | {xr} | {xb} | {x12} | {x14} | {xp} |\n\
-| enclosed `f64` BB (`solve_triangle`) | {ec} | {er} | {eb} | {e12} | {e14} | {ep} |\n\n\
-With enclosed input (1/4·(1 + 1e-5) is not a float, so `solve_triangle` has no exact system, and \
+| enclosed `f64` BB (`solve_bb` on intervals) | {ec} | {er} | {eb} | {e12} | {e14} | {ep} |\n\n\
+With enclosed input (1/4·(1 + 1e-5) is not a float, so `solve_bb` on its interval enclosure has no exact system, and \
 the compensated coefficients still carry the input's own rounding, one ulp of 1/4) the clips \
 stall at that floor and only splits, a factor 2 per level, get below it. \
 The paper reports {p12} and {p14} levels at −12 and −14, its path ending in {plast} — about one ulp, \
