@@ -287,3 +287,103 @@ fn help_has_no_escaped_brackets() {
         assert!(!text.contains('`'), "{cmd}: {text}");
     }
 }
+
+/// `crosscheck`: verdicts per claim in file order, missed hits, the nearest
+/// hit, the summary; malformed claims name their line and exit 2.
+#[test]
+fn crosscheck_claims() {
+    let dir = TempDir::new("crosscheck");
+    let patch = dir.file("patch.json", FLAT);
+    // Ray 0 hits (0.25, 0.5) at t = 1; ray 1 misses; ray 2 hits (0.1, 0.1) at t = 2.
+    let rays = dir.file("rays.txt", "0.25 0.5 1 0 0 -1\n5 5 1 0 0 -1\n0.1 0.1 2 0 0 -1\n");
+    let claims = dir.file(
+        "claims.txt",
+        "# ray u v t\n0 0.25 0.5 1\n0 0.25 0.500000000001 1\n0 0.6 0.2 1\n1 0.5 0.5 3\n",
+    );
+    let v = ok_json(
+        &[
+            "crosscheck",
+            "--patch",
+            &patch,
+            "--rays",
+            &rays,
+            "--claims",
+            &claims,
+            "--json",
+        ],
+        "",
+    );
+    let r = v["rays"].as_array().unwrap();
+    assert_eq!(r.len(), 3);
+    let verdicts = |k: usize| -> Vec<String> {
+        r[k]["claims"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| c["verdict"].as_str().unwrap().to_string())
+            .collect()
+    };
+    assert_eq!(verdicts(0), ["confirmed", "duplicate", "spurious"]);
+    assert_eq!(verdicts(1), ["spurious"]);
+    assert!(verdicts(2).is_empty());
+    assert_eq!(r[0]["nearest_claimed"], true);
+    assert_eq!(r[1]["nearest_claimed"], Value::Null);
+    assert_eq!(r[2]["nearest_claimed"], false);
+    assert_eq!(r[2]["missed"].as_array().unwrap().len(), 1);
+    assert!((r[2]["missed"][0]["t"].as_f64().unwrap() - 2.0).abs() < 1e-12);
+    let s = &v["summary"];
+    assert_eq!(
+        [
+            s["claims"].clone(),
+            s["confirmed"].clone(),
+            s["duplicate"].clone(),
+            s["spurious"].clone(),
+            s["undecided"].clone(),
+            s["missed"].clone(),
+            s["true_hits"].clone()
+        ],
+        [4, 1, 1, 2, 0, 1, 2].map(Value::from)
+    );
+    // A looser tol turns the third claim of ray 0 into... still spurious (0.35 away).
+    let v = ok_json(
+        &[
+            "crosscheck",
+            "--patch",
+            &patch,
+            "--rays",
+            &rays,
+            "--claims",
+            &claims,
+            "--tol",
+            "0.1",
+            "--json",
+        ],
+        "",
+    );
+    assert_eq!(v["rays"][0]["claims"][2]["verdict"], "spurious");
+    for (bad, line) in [
+        ("0 0.25 0.5\n", "line 1"),
+        ("0 0.25 0.5 1\n0 x 0.5 1\n", "line 2"),
+        ("0 0.25 NaN 1\n", "line 1"),
+        ("3 0.25 0.5 1\n", "line 1"),
+        ("-1 0.25 0.5 1\n", "line 1"),
+    ] {
+        let c = dir.file("bad.txt", bad);
+        let err = fails_cleanly(&["crosscheck", "--patch", &patch, "--rays", &rays, "--claims", &c], "");
+        assert!(err.contains(line), "{bad:?}: {err}");
+    }
+    fails_cleanly(
+        &[
+            "crosscheck",
+            "--patch",
+            &patch,
+            "--rays",
+            &rays,
+            "--claims",
+            &claims,
+            "--tol",
+            "-1",
+        ],
+        "",
+    );
+}

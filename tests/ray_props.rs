@@ -18,9 +18,10 @@ use proptest::collection::vec;
 use proptest::prelude::*;
 use proptest::test_runner::Config;
 use rootclip::ray::{
-    intersect, Degeneracy, Hit, Patch, PatchSpec, Query, Ray, RayOptions, RayOutcome, TensorPatch, TriPatch,
+    classify, intersect, Claim, Degeneracy, Hit, Patch, PatchSpec, Query, Ray, RayOptions, RayOutcome, TensorPatch,
+    TriPatch,
 };
-use rootclip::solve::SquareRoute;
+use rootclip::solve::{ClaimVerdict, SquareRoute};
 use rootclip::Error;
 
 /// A patch from its JSON spec.
@@ -232,6 +233,52 @@ proptest! {
         let patch: Patch = tensor_patch(m, n, &offsets, w).into();
         let ray = aimed_ray(&patch, u0, v0, tilt, dist);
         check_planted(&patch, &ray, u0, v0);
+    }
+
+    /// The referee on planted hits: a claim within `tol/4` of the planted
+    /// `(u0, v0)` is confirmed, the same claim again is a duplicate, a claim
+    /// `3·tol` away is never confirmed, a far claim is never confirmed; every
+    /// certified hit no claim took is listed as missed, and only those.
+    #[test]
+    fn referee_on_planted_hits(
+        m in 1usize..=3,
+        n in 1usize..=3,
+        offsets in vec(-1.0f64..1.0, 48),
+        u0 in 0.05f64..0.95,
+        v0 in 0.05f64..0.95,
+        tilt in prop::array::uniform2(-1.0f64..1.0),
+        jitter in prop::array::uniform2(-0.25f64..0.25),
+        far in prop::array::uniform2(0.0f64..1.0),
+    ) {
+        let patch: Patch = tensor_patch(m, n, &offsets, None).into();
+        let ray = aimed_ray(&patch, u0, v0, tilt, 2.0);
+        let tol = 1e-8;
+        let claim = |u: f64, v: f64| Claim { u, v, t: 2.0 };
+        let claims = [
+            claim(u0 + jitter[0] * tol, v0 + jitter[1] * tol),
+            claim(u0, v0),
+            claim(u0 + 3.0 * tol, v0),
+            claim(far[0], far[1]),
+        ];
+        let c = classify(&patch, &ray, &claims, tol).unwrap();
+        let planted_certified = c.hits.iter().any(|h| h.is_certified() && gap(h.bx.u, u0) <= 1e-12 && gap(h.bx.v, v0) <= 1e-12);
+        if planted_certified {
+            prop_assert_eq!(c.claims[0].0, ClaimVerdict::Confirmed, "{:?}", c);
+            prop_assert_eq!(c.claims[1].0, ClaimVerdict::Duplicate, "{:?}", c);
+        }
+        prop_assert_ne!(c.claims[2].0, ClaimVerdict::Confirmed, "{:?}", c);
+        let far_from_all = c.hits.iter().all(|h| gap(h.bx.u, far[0]) > 1e-6 || gap(h.bx.v, far[1]) > 1e-6);
+        if far_from_all {
+            prop_assert!(matches!(c.claims[3].0, ClaimVerdict::Spurious | ClaimVerdict::Undecided), "{:?}", c);
+            if c.complete {
+                prop_assert_eq!(c.claims[3].0, ClaimVerdict::Spurious);
+            }
+        }
+        let taken: Vec<usize> = c.claims.iter().filter(|x| x.0 == ClaimVerdict::Confirmed).filter_map(|x| x.1).collect();
+        for (k, h) in c.hits.iter().enumerate() {
+            let listed = c.missed.contains(&k);
+            prop_assert_eq!(listed, h.is_certified() && !taken.contains(&k), "{:?}", c);
+        }
     }
 
     /// The square route (`solve_square`: the tensor split into two triangles

@@ -10,8 +10,8 @@ use rootclip::internals::driver::{self, Limits, Probe};
 use rootclip::internals::fatcurve::ClipBounds;
 use rootclip::internals::geo::GeoIv;
 use rootclip::internals::method::{clip_bounds, preprocess, preprocess_general};
-use rootclip::solve::solve_bb;
 use rootclip::internals::tribox::TriBox;
+use rootclip::solve::solve_bb;
 use rootclip::{Scalar, TriBezier};
 
 /// `f`, `g` on the unit triangle, enclosed, and exact.

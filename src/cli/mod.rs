@@ -2,6 +2,7 @@
 //! Errors print one line on stderr and exit 2. Not part of the API.
 
 mod bernstein;
+mod crosscheck;
 mod input;
 mod json;
 mod ray;
@@ -31,6 +32,8 @@ enum Command {
     Solve(solve::SolveArgs),
     /// Every hit of rays with a Bézier or B-spline patch, each certified.
     Ray(ray::RayArgs),
+    /// Referee claimed ray hits (a fast solver's) against the certified hits.
+    Crosscheck(crosscheck::CrosscheckArgs),
     /// Print the exact Bernstein–Bézier coefficients of a polynomial in u, v.
     Bernstein(bernstein::BernsteinArgs),
 }
@@ -47,7 +50,7 @@ pub fn main() -> ExitCode {
             return ExitCode::SUCCESS;
         }
         Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
-            eprintln!("rootclip: missing subcommand (bernstein, ray, solve, tables); see rootclip --help");
+            eprintln!("rootclip: missing subcommand (bernstein, crosscheck, ray, solve, tables); see rootclip --help");
             return ExitCode::from(2);
         }
         Err(e) => {
@@ -67,6 +70,7 @@ pub fn main() -> ExitCode {
         Command::Bernstein(args) => bernstein::run(&args),
         Command::Tables(args) => tables::run(&args),
         Command::Ray(args) => ray::run(&args),
+        Command::Crosscheck(args) => crosscheck::run(&args),
         Command::Solve(args) => solve::run(&args),
     };
     match out {

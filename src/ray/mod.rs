@@ -53,6 +53,7 @@ mod hit;
 mod patch;
 mod planes;
 mod query;
+mod referee;
 mod regions;
 #[cfg(feature = "internals")]
 pub(crate) mod sample;
@@ -64,6 +65,7 @@ pub use bspline::{BezierPiece, BsplineSurface};
 pub use hit::{Degeneracy, Hit, HitBox, HitStatus, RayHits, RayOutcome};
 pub use patch::{TensorPatch, TriPatch};
 pub use query::{Query, Ray, RayOptions};
+pub use referee::{classify, classify_with, Claim, Classification};
 pub use spec::PatchSpec;
 pub use surface::Patch;
 

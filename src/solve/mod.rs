@@ -26,12 +26,14 @@ pub(crate) mod linalg;
 pub(crate) mod method;
 mod options;
 pub(crate) mod rect;
+pub(crate) mod referee;
 mod regions;
 pub(crate) mod settle;
 mod solution;
 pub(crate) mod tribox;
 
 pub use options::{Domain, SolveOptions, SquareRoute};
+pub use referee::{classify_roots, ClaimVerdict, RootClassification};
 
 use crate::error::{Error, Result};
 use crate::poly::{Polynomial, TensorBezier, TriBall, TriBezier};
