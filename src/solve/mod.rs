@@ -24,6 +24,7 @@ pub(crate) mod fatcurve;
 pub(crate) mod krawczyk;
 pub(crate) mod linalg;
 pub(crate) mod method;
+pub mod nd;
 mod options;
 pub(crate) mod rect;
 pub(crate) mod referee;

@@ -1,0 +1,155 @@
+//! Krawczyk on a box in domain coordinates, for the leaves of the iteration
+//! and for merging: the operator of [`krawczyk`](super::krawczyk) with
+//! sharper ingredients, since a leaf is where rounding hurts most.
+//!
+//! * `F(x̃)` is evaluated **exactly** at the float point `x̃` from the
+//!   coefficients' midpoints (rational de Casteljau), then widened by the
+//!   largest coefficient radius (the Bernstein basis is a non-negative
+//!   partition of unity, so a coefficient error of at most `r` moves the
+//!   value by at most `r`), then enclosed in floats outward.
+//! * `F'(X)` is the enclosure over `X` of the derivatives computed once on
+//!   the whole domain (interval de Casteljau with parameter ranges), not the
+//!   hull of a restricted polynomial's differences, whose rounding is
+//!   divided by the box's width.
+//!
+//! Near two zeros `10⁻⁷` apart both matter: the values there are `~10⁻¹⁵`
+//! and the derivatives `~10⁻⁷`, below what the subdivided coefficients
+//! resolve.
+
+use super::tensor::{derivative, eval_box};
+use crate::scalar::iv::Iv;
+use crate::scalar::rational_to_interval;
+use crate::solve::krawczyk::Verdict;
+use num_rational::BigRational;
+use num_traits::Zero;
+
+/// A square system on the domain with its derivatives.
+pub(crate) struct GlobalSystem<'a, const N: usize> {
+    deg: [[usize; N]; N],
+    c: &'a [Vec<Iv>],
+    /// `d[e][k]`: degrees and coefficients of `∂f_e/∂x_k`.
+    d: Vec<Vec<(Vec<usize>, Vec<Iv>)>>,
+    /// Largest coefficient radius of each equation (exact rational).
+    radius: Vec<BigRational>,
+}
+
+impl<'a, const N: usize> GlobalSystem<'a, N> {
+    pub(crate) fn new(deg: [[usize; N]; N], c: &'a [Vec<Iv>]) -> Self {
+        let d = (0..N)
+            .map(|e| (0..N).map(|k| derivative(&c[e], &deg[e], k)).collect())
+            .collect();
+        let radius = c
+            .iter()
+            .map(|eq| {
+                eq.iter()
+                    .filter(|x| x.lo != x.hi)
+                    .map(|x| {
+                        let (m, lo, hi) = (q(x.mid()), q(x.lo), q(x.hi));
+                        let a = &hi - &m;
+                        let b = &m - &lo;
+                        if a > b {
+                            a
+                        } else {
+                            b
+                        }
+                    })
+                    .fold(BigRational::zero(), |a, b| if b > a { b } else { a })
+            })
+            .collect();
+        Self { deg, c, d, radius }
+    }
+
+    /// `f_e(x)` enclosed (module docs: exact, plus the radius).
+    fn value(&self, e: usize, x: &[f64; N]) -> Iv {
+        let v = eval_exact(&self.c[e], &self.deg[e], x);
+        let r = &self.radius[e];
+        let lo = rational_to_interval(&(&v - r)).inf();
+        let hi = rational_to_interval(&(&v + r)).sup();
+        Iv::new(lo, hi)
+    }
+
+    fn jacobian(&self, x: &[[f64; 2]; N]) -> [[Iv; N]; N] {
+        std::array::from_fn(|e| {
+            std::array::from_fn(|k| {
+                let (deg, c) = &self.d[e][k];
+                eval_box(c, deg, &x[..])
+            })
+        })
+    }
+
+    /// Krawczyk on the box `x` (float bounds, domain coordinates): `Unique`
+    /// with an enclosure of the only zero when `K(X) ⊂ int X` (contracted by
+    /// a few more steps), `NoRoot` when `K(X) ∩ X = ∅`.
+    pub(crate) fn certify(&self, x: [[f64; 2]; N]) -> Verdict<[[f64; 2]; N], ()> {
+        let Some(k) = self.step(&x) else {
+            return Verdict::Undecided(());
+        };
+        let inside = (0..N).all(|a| k[a].lo > x[a][0] && k[a].hi < x[a][1]);
+        if !inside {
+            if (0..N).any(|a| k[a].hi < x[a][0] || k[a].lo > x[a][1]) {
+                return Verdict::NoRoot;
+            }
+            return Verdict::Undecided(());
+        }
+        let mut cur: [[f64; 2]; N] = std::array::from_fn(|a| [k[a].lo, k[a].hi]);
+        for _ in 0..4 {
+            let Some(k) = self.step(&cur) else { break };
+            let next: [[f64; 2]; N] = std::array::from_fn(|a| [k[a].lo.max(cur[a][0]), k[a].hi.min(cur[a][1])]);
+            let w = |b: &[[f64; 2]; N]| b.iter().fold(0.0f64, |m, s| m.max(s[1] - s[0]));
+            let shrunk = w(&next) < 0.5 * w(&cur);
+            cur = next;
+            if !shrunk {
+                break;
+            }
+        }
+        Verdict::Unique(cur)
+    }
+
+    /// `K(X)`; `None` when the midpoint Jacobian is singular or a value is
+    /// not finite.
+    fn step(&self, x: &[[f64; 2]; N]) -> Option<[Iv; N]> {
+        let j = self.jacobian(x);
+        let (y, mm) = super::krawczyk::preconditioner(&j)?;
+        let p: [f64; N] = std::array::from_fn(|a| 0.5 * x[a][0] + 0.5 * x[a][1]);
+        let f: [Iv; N] = std::array::from_fn(|e| self.value(e, &p));
+        let dx: [Iv; N] = std::array::from_fn(|a| Iv::new(x[a][0], x[a][1]).sub(Iv::point(p[a])));
+        let k: [Iv; N] = std::array::from_fn(|r| {
+            let mut s = Iv::point(p[r]);
+            for c in 0..N {
+                s = s.sub(Iv::point(y[r][c]).mul(f[c]));
+                s = s.add(mm[r][c].mul(dx[c]));
+            }
+            s
+        });
+        k.iter().all(|v| v.is_finite()).then_some(k)
+    }
+}
+
+fn q(x: f64) -> BigRational {
+    BigRational::from_float(x).unwrap_or_else(BigRational::zero)
+}
+
+/// The exact value at the float point `x` of the polynomial whose
+/// coefficients are the midpoints of `c` (rational de Casteljau).
+pub(crate) fn eval_exact(c: &[Iv], deg: &[usize], x: &[f64]) -> BigRational {
+    let mut work: Vec<BigRational> = c.iter().map(|v| q(v.mid())).collect();
+    let mut len = work.len();
+    for d in (0..deg.len()).rev() {
+        let n = deg[d];
+        let t = q(x[d]);
+        let s = BigRational::from_integer(1.into()) - &t;
+        let lines = len / (n + 1);
+        for l in 0..lines {
+            let base = l * (n + 1);
+            for r in 1..=n {
+                for i in 0..=n - r {
+                    let v = &s * &work[base + i] + &t * &work[base + i + 1];
+                    work[base + i] = v;
+                }
+            }
+            work.swap(l, base);
+        }
+        len = lines;
+    }
+    work.swap_remove(0)
+}
