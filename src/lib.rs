@@ -58,6 +58,7 @@ pub mod poly;
 pub mod ray;
 pub mod scalar;
 pub mod solve;
+pub mod ssi;
 
 // The paper reproductions: the `tables` command, and the report example
 // through `internals` (which uses more of it than the command does).

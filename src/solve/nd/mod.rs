@@ -78,7 +78,7 @@
 //! All arithmetic on coefficients is the branchless interval kernel of the
 //! box solver (each endpoint rounded to nearest, moved one float outward).
 
-mod clip;
+pub(crate) mod clip;
 mod global;
 pub(crate) mod krawczyk;
 mod runner;

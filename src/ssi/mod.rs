@@ -1,0 +1,405 @@
+//! Surface/surface intersection (seed 002): every branch of the curve where
+//! two Bézier patches meet, traced by the seed's continuation and RK4
+//! marching, with every traced point certified and every branch proven
+//! found.
+//!
+//! ```
+//! use rootclip::glam::DVec3;
+//! use rootclip::ray::{Patch, TensorPatch};
+//! use rootclip::ssi::{intersect_surfaces, SsiOptions};
+//! // The plane z = 1/2 against the paraboloid z = x² + y² over [-1, 1]²:
+//! // a circle of radius √½, a closed loop inside both patches.
+//! let plane = TensorPatch::new(1, 1, vec![
+//!     DVec3::new(-1.0, -1.0, 0.5), DVec3::new(-1.0, 1.0, 0.5),
+//!     DVec3::new(1.0, -1.0, 0.5), DVec3::new(1.0, 1.0, 0.5)], None)?;
+//! // x² on [−1, 1] has Bézier coefficients 1, −1, 1 (degree 2).
+//! let sq = [1.0, -1.0, 1.0];
+//! let mut pts = Vec::new();
+//! for i in 0..3 {
+//!     for j in 0..3 {
+//!         pts.push(DVec3::new(i as f64 - 1.0, j as f64 - 1.0, sq[i] + sq[j]));
+//!     }
+//! }
+//! let bowl = TensorPatch::new(2, 2, pts, None)?;
+//! let out = intersect_surfaces(&Patch::from(plane), &Patch::from(bowl), &SsiOptions::default())?;
+//! assert!(out.complete && out.branches.len() == 1 && out.branches[0].closed);
+//! for p in &out.branches[0].points {
+//!     let r2 = p.xyz[0] * p.xyz[0] + p.xyz[1] * p.xyz[1];
+//!     assert!(p.certified && (r2 - 0.5).abs() < 1e-9);
+//! }
+//! # Ok::<(), rootclip::Error>(())
+//! ```
+//!
+//! # Contract ([`Intersection`])
+//! The curve is `C = {(u, v, s, t) ∈ [0, 1]⁴ : A(u, v) = B(s, t)}` (B-spline
+//! surfaces: per pair of Bézier pieces, in knot parameters).
+//! * A point flagged `certified` lies within its printed digits' rounding of
+//!   a point of `C`: its box (width below `10⁻⁶` relative, usually `10⁻¹²`)
+//!   holds exactly one point of `C` on the hyperplane across the marching
+//!   direction through it.
+//! * Between consecutive points of a branch the curve is proven to be one
+//!   arc (a graph over the marching parameter, inside a box the tube test
+//!   proved; see `system.rs`), so a branch cannot jump to another branch.
+//! * If `complete` is true: the branches are all of `C`, each exactly once
+//!   (the start points are complete, see `start.rs`, and every branch ended
+//!   at a certified crossing with the boundary or closed on its start), and
+//!   `C` has no singular point. Each branch's chord deviates from the curve
+//!   by about `tol` at most (a float check at each step's middle).
+//! * If `complete` is false, `singular` says where and why: a tangential
+//!   contact or other singular point (a start system with an undecided
+//!   region), possibly overlapping patches (an equation that may vanish
+//!   identically, i.e. a 2-dimensional intersection), or an unfinished
+//!   branch (a step proven nowhere, a budget). Branches listed are still
+//!   right as far as their certified points go.
+//!
+//! Triangular patches are not supported yet (an [`Error::Shape`]).
+
+mod algebra;
+mod start;
+mod system;
+mod trace;
+
+use crate::error::{Error, Result};
+use crate::ray::{Patch, TensorPatch};
+use crate::solve::nd::NdOptions;
+use system::{Box4, System};
+use trace::{End, Start, Trace, Tracer};
+
+/// Options of [`intersect_surfaces`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct SsiOptions {
+    /// Largest deviation of a chord from the curve, in model units (> 0).
+    pub tol: f64,
+    /// Box budget of each start-point solve.
+    pub max_boxes: usize,
+    /// Most points per branch.
+    pub max_points: usize,
+}
+
+impl Default for SsiOptions {
+    fn default() -> Self {
+        Self {
+            tol: 1e-3,
+            max_boxes: 200_000,
+            max_points: 100_000,
+        }
+    }
+}
+
+impl SsiOptions {
+    /// The same options with another chord tolerance.
+    pub fn with_tol(mut self, tol: f64) -> Self {
+        self.tol = tol;
+        self
+    }
+}
+
+/// A point of a branch.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+pub struct CurvePoint {
+    /// Parameters on patch A.
+    pub a: [f64; 2],
+    /// Parameters on patch B.
+    pub b: [f64; 2],
+    /// The point `A(a)` in model space.
+    pub xyz: [f64; 3],
+    /// Proven within rounding of the curve (module docs).
+    pub certified: bool,
+}
+
+/// One branch of the curve, points in order along it.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+pub struct Branch {
+    /// A closed loop (the last point joins the first).
+    pub closed: bool,
+    /// The points.
+    pub points: Vec<CurvePoint>,
+}
+
+/// Why a region is singular or undecided.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+#[cfg_attr(feature = "serde", derive(serde::Serialize), serde(rename_all = "snake_case"))]
+pub enum SingularKind {
+    /// The normals are parallel within `10⁻⁶` there: the patches touch.
+    TangentialContact,
+    /// A coordinate difference may vanish identically: the patches may
+    /// overlap (a 2-dimensional intersection).
+    Overlap,
+    /// A start system left the region undecided (a singular point of the
+    /// curve such as two branches crossing, or a budget).
+    Undecided,
+    /// A branch could not be traced on from here.
+    Unfinished,
+}
+
+/// A region where the answer is not proven.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+pub struct Singular {
+    /// What kind.
+    pub kind: SingularKind,
+    /// The region on patch A, `[[u_lo, u_hi], [v_lo, v_hi]]`.
+    pub a: [[f64; 2]; 2],
+    /// The region on patch B.
+    pub b: [[f64; 2]; 2],
+    /// In words.
+    pub reason: String,
+}
+
+/// Counters of a run.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[non_exhaustive]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+pub struct SsiStats {
+    /// Boxes processed by the start-point solves.
+    pub boxes: usize,
+    /// Certified crossings with the patches' boundaries.
+    pub crossings: usize,
+    /// Certified turning points.
+    pub turning_points: usize,
+    /// Certified points on the branches.
+    pub certified_points: usize,
+}
+
+/// The intersection of two patches; see the module docs for the contract.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+pub struct Intersection {
+    /// The branches are the whole intersection (module docs).
+    pub complete: bool,
+    /// The branches.
+    pub branches: Vec<Branch>,
+    /// Regions not proven.
+    pub singular: Vec<Singular>,
+    /// Counters.
+    pub stats: SsiStats,
+}
+
+/// Every branch of the intersection of patches `a` and `b`, with the
+/// contract of the [module docs](self).
+///
+/// Errors: triangular patches ([`Error::Shape`]), a `tol` that is not a
+/// positive number ([`Error::InvalidOption`]).
+pub fn intersect_surfaces(a: &Patch, b: &Patch, opts: &SsiOptions) -> Result<Intersection> {
+    if !(opts.tol > 0.0 && opts.tol.is_finite()) {
+        return Err(Error::InvalidOption(format!(
+            "tol must be a positive number, got {}",
+            opts.tol
+        )));
+    }
+    let pa = pieces(a)?;
+    let pb = pieces(b)?;
+    let mut out = Intersection {
+        complete: true,
+        branches: Vec::new(),
+        singular: Vec::new(),
+        stats: SsiStats::default(),
+    };
+    for (x, mx) in &pa {
+        for (y, my) in &pb {
+            let part = intersect_pair(x, y, opts);
+            let map = |p: &mut CurvePoint| {
+                p.a = mx(p.a);
+                p.b = my(p.b);
+            };
+            out.complete &= part.complete;
+            for mut br in part.branches {
+                br.points.iter_mut().for_each(map);
+                out.branches.push(br);
+            }
+            for mut s in part.singular {
+                let (a0, a1) = (mx([s.a[0][0], s.a[1][0]]), mx([s.a[0][1], s.a[1][1]]));
+                let (b0, b1) = (my([s.b[0][0], s.b[1][0]]), my([s.b[0][1], s.b[1][1]]));
+                s.a = [[a0[0], a1[0]], [a0[1], a1[1]]];
+                s.b = [[b0[0], b1[0]], [b0[1], b1[1]]];
+                out.singular.push(s);
+            }
+            out.stats.boxes += part.stats.boxes;
+            out.stats.crossings += part.stats.crossings;
+            out.stats.turning_points += part.stats.turning_points;
+            out.stats.certified_points += part.stats.certified_points;
+        }
+    }
+    Ok(out)
+}
+
+type ParamMap = Box<dyn Fn([f64; 2]) -> [f64; 2]>;
+
+/// The Bézier pieces of a patch with the map from a piece's `[0, 1]²` to
+/// the patch's parameters.
+fn pieces(p: &Patch) -> Result<Vec<(TensorPatch, ParamMap)>> {
+    match p {
+        Patch::Tensor(t) => Ok(vec![(t.clone(), Box::new(|x| x))]),
+        Patch::Bspline(s) => Ok(s
+            .pieces()
+            .iter()
+            .map(|piece| {
+                let (ur, vr) = (piece.u_range(), piece.v_range());
+                let map: ParamMap =
+                    Box::new(move |x: [f64; 2]| [ur[0] + x[0] * (ur[1] - ur[0]), vr[0] + x[1] * (vr[1] - vr[0])]);
+                (piece.patch().clone(), map)
+            })
+            .collect()),
+        Patch::Triangle(_) => Err(Error::Shape(
+            "surface intersection takes tensor-product and B-spline patches; triangular patches are not supported yet"
+                .into(),
+        )),
+    }
+}
+
+fn split(b: &Box4) -> ([[f64; 2]; 2], [[f64; 2]; 2]) {
+    ([b[0], b[1]], [b[2], b[3]])
+}
+
+/// The intersection of two Bézier patches.
+fn intersect_pair(a: &TensorPatch, b: &TensorPatch, opts: &SsiOptions) -> Intersection {
+    let ha = algebra::homogeneous(a);
+    let hb = algebra::homogeneous(b);
+    let f = algebra::residual(&ha, &hb);
+    let sys = System::new(&f);
+    let nd = NdOptions::default().with_max_boxes(opts.max_boxes);
+    let starts = start::find(&sys, &ha, &hb, &nd);
+    let mut out = Intersection {
+        complete: true,
+        branches: Vec::new(),
+        singular: Vec::new(),
+        stats: SsiStats {
+            boxes: starts.boxes,
+            crossings: starts.crossings.len(),
+            turning_points: starts.turning.len(),
+            certified_points: 0,
+        },
+    };
+    if let Some(reason) = &starts.degenerate {
+        out.complete = false;
+        out.singular.push(Singular {
+            kind: SingularKind::Overlap,
+            a: [[0.0, 1.0]; 2],
+            b: [[0.0, 1.0]; 2],
+            reason: format!("an equation may vanish identically ({reason})"),
+        });
+        return out;
+    }
+    for u in group(&starts.undecided) {
+        out.complete = false;
+        let (ra, rb) = split(&u);
+        let c = u.map(|[lo, hi]| 0.5 * lo + 0.5 * hi);
+        let (_, _, na) = a.frame(c[0].clamp(0.0, 1.0), c[1].clamp(0.0, 1.0));
+        let (_, _, nb) = b.frame(c[2].clamp(0.0, 1.0), c[3].clamp(0.0, 1.0));
+        let tangential = na.cross(nb).length() <= 1e-6 * na.length() * nb.length();
+        out.singular.push(Singular {
+            kind: if tangential {
+                SingularKind::TangentialContact
+            } else {
+                SingularKind::Undecided
+            },
+            a: ra,
+            b: rb,
+            reason: if tangential {
+                "the patches touch here (parallel normals): a tangential contact".into()
+            } else {
+                "a start-point solve left this region undecided (a singular point of the curve, or a budget)".into()
+            },
+        });
+    }
+    let xyz = |u: f64, v: f64| a.eval(u, v).to_array();
+    let tracer = Tracer {
+        sys: &sys,
+        xyz: &xyz,
+        crossings: &starts.crossings,
+        turning: &starts.turning,
+        undecided: &starts.undecided,
+        tol: opts.tol,
+        max_points: opts.max_points,
+    };
+    let mut used_cross = vec![false; starts.crossings.len()];
+    let mut used_turn = vec![false; starts.turning.len()];
+    let mut traces: Vec<(Trace, bool)> = Vec::new();
+    for k in 0..starts.crossings.len() {
+        if used_cross[k] {
+            continue;
+        }
+        used_cross[k] = true;
+        let tr = tracer.trace(Start::Crossing(k), starts.crossings[k]);
+        if let End::Crossing(e) = tr.end {
+            used_cross[e] = true;
+        }
+        tr.turning.iter().for_each(|&t| used_turn[t] = true);
+        traces.push((tr, false));
+    }
+    for k in 0..starts.turning.len() {
+        let t = &starts.turning[k];
+        let on_traced = traces.iter().any(|(tr, _)| tr.tubes.iter().any(|tb| inside(t, tb)));
+        if used_turn[k] || on_traced {
+            continue;
+        }
+        used_turn[k] = true;
+        let tr = tracer.trace(Start::Turning(k), *t);
+        if let End::Crossing(e) = tr.end {
+            if used_cross[e] {
+                // The arc through crossing `e` is unique, and was traced.
+                continue;
+            }
+        }
+        tr.turning.iter().for_each(|&t| used_turn[t] = true);
+        traces.push((tr, true));
+    }
+    for (tr, _) in traces {
+        let closed = tr.end == End::Closed;
+        if let End::Stuck(bx) = tr.end {
+            out.complete = false;
+            let (ra, rb) = split(&bx);
+            out.singular.push(Singular {
+                kind: SingularKind::Unfinished,
+                a: ra,
+                b: rb,
+                reason: "a branch could not be traced on from here (no step proven, or the point budget)".into(),
+            });
+        }
+        let points: Vec<CurvePoint> = tr
+            .points
+            .iter()
+            .map(|&(x, certified)| CurvePoint {
+                a: [x[0], x[1]],
+                b: [x[2], x[3]],
+                xyz: xyz(x[0], x[1]),
+                certified,
+            })
+            .collect();
+        out.complete &= points.iter().all(|p| p.certified);
+        out.stats.certified_points += points.iter().filter(|p| p.certified).count();
+        out.branches.push(Branch { closed, points });
+    }
+    out
+}
+
+fn inside(a: &Box4, b: &Box4) -> bool {
+    (0..4).all(|d| b[d][0] <= a[d][0] && a[d][1] <= b[d][1])
+}
+
+/// Boxes that touch, joined into their hulls.
+fn group(boxes: &[Box4]) -> Vec<Box4> {
+    let mut out: Vec<Box4> = Vec::new();
+    for b in boxes {
+        let mut cur = *b;
+        while let Some(i) = out
+            .iter()
+            .position(|o| (0..4).all(|d| o[d][0] <= cur[d][1] && cur[d][0] <= o[d][1]))
+        {
+            let o = out.swap_remove(i);
+            for d in 0..4 {
+                cur[d] = [cur[d][0].min(o[d][0]), cur[d][1].max(o[d][1])];
+            }
+        }
+        out.push(cur);
+    }
+    out
+}

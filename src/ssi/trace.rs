@@ -1,0 +1,328 @@
+//! Marching along one branch of the curve, from a certified start point,
+//! with every step proven.
+//!
+//! # A step
+//! 1. **Predict** by one RK4 step of seed 002's tangent field
+//!    `x' = T(x)` (the unit kernel of `F'`, oriented along the march), and
+//!    pick the marching axis `p`, the largest component of the tangent at
+//!    the step's middle.
+//! 2. **Correct** by Newton's method on the hyperplane `x_p = const`
+//!    (seed 002's continuation: the curve cut by a plane across the marching
+//!    direction), and at the step's middle; the chord's deviation there, in
+//!    model space, must be at most `tol`, else the step is halved.
+//! 3. **Prove** the piece with the tube test of
+//!    [`system`](super::system): `K(P, Y) ⊂ int Y` on a box `P × Y` around
+//!    the step proves that the curve in it is one arc, a graph over `P`.
+//!    The new point is certified on its hyperplane (a box holding exactly
+//!    one curve point there), and both the old and the new point boxes must
+//!    lie in the tube: consecutive arcs share a curve point, so the traced
+//!    arcs form one connected piece of the curve, and no step can jump to
+//!    another branch (the tube holds no other curve point).
+//! 4. **Check events** against the certified start points: a crossing with
+//!    the box's boundary inside the tube ends the branch there (it is the
+//!    only boundary point on the arc, so the arc leaves the domain there);
+//!    the start turning point inside a later tube closes a loop; turning
+//!    points inside a tube are on this branch. A start point or an
+//!    undecided region that only partly overlaps a tube, a tube that leaves
+//!    the domain with no crossing in it, or two crossings in one tube halve
+//!    the step. Below a step of `10⁻⁹` the branch stops, unfinished.
+
+use super::system::{others, Box4, System};
+
+/// How a branch ended.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum End {
+    /// At the crossing with this index.
+    Crossing(usize),
+    /// Back at its start: a closed loop.
+    Closed,
+    /// The step fell below the floor or the budget ran out near this box.
+    Stuck(Box4),
+}
+
+/// One traced branch.
+pub(crate) struct Trace {
+    /// Points in order, each with whether it is certified.
+    pub(crate) points: Vec<([f64; 4], bool)>,
+    /// The proven tubes, in order.
+    pub(crate) tubes: Vec<Box4>,
+    /// Indices of the turning points found on this branch.
+    pub(crate) turning: Vec<usize>,
+    pub(crate) end: End,
+}
+
+/// The start of a branch.
+#[derive(Clone, Copy)]
+pub(crate) enum Start {
+    Crossing(usize),
+    Turning(usize),
+}
+
+pub(crate) struct Tracer<'a> {
+    pub(crate) sys: &'a System,
+    /// The point of patch A at `(u, v)`, in model space.
+    pub(crate) xyz: &'a dyn Fn(f64, f64) -> [f64; 3],
+    pub(crate) crossings: &'a [Box4],
+    pub(crate) turning: &'a [Box4],
+    pub(crate) undecided: &'a [Box4],
+    pub(crate) tol: f64,
+    pub(crate) max_points: usize,
+}
+
+const MIN_STEP: f64 = 1e-9;
+const MAX_STEP: f64 = 0.125;
+
+fn center(b: &Box4) -> [f64; 4] {
+    b.map(|[lo, hi]| 0.5 * lo + 0.5 * hi)
+}
+
+fn overlap(a: &Box4, b: &Box4) -> bool {
+    (0..4).all(|d| a[d][0] <= b[d][1] && b[d][0] <= a[d][1])
+}
+
+fn inside(a: &Box4, b: &Box4) -> bool {
+    (0..4).all(|d| b[d][0] <= a[d][0] && a[d][1] <= b[d][1])
+}
+
+fn dot(a: &[f64; 4], b: &[f64; 4]) -> f64 {
+    (0..4).map(|i| a[i] * b[i]).sum()
+}
+
+fn in_domain(x: &[f64; 4]) -> bool {
+    x.iter().all(|&c| (0.0..=1.0).contains(&c))
+}
+
+/// What a proposed step turned out to be.
+enum Outcome {
+    /// Accepted: the new point, its certified box, the tube.
+    Step([f64; 4], Option<Box4>, Box4),
+    /// Accepted and the branch ends (crossing or loop).
+    Last(Box4, End),
+    Retry,
+}
+
+impl Tracer<'_> {
+    fn oriented(&self, x: &[f64; 4], dir: &[f64; 4]) -> Option<[f64; 4]> {
+        let t = self.sys.tangent(x)?;
+        Some(if dot(&t, dir) < 0.0 { t.map(|c| -c) } else { t })
+    }
+
+    /// One RK4 step of `x' = T(x)`; Euler where a tangent is missing.
+    fn predict(&self, x: &[f64; 4], dir: &[f64; 4], h: f64) -> [f64; 4] {
+        let at = |y: [f64; 4], k: &[f64; 4], s: f64| -> [f64; 4] { std::array::from_fn(|i| y[i] + s * k[i]) };
+        let k1 = *dir;
+        let Some(k2) = self.oriented(&at(*x, &k1, 0.5 * h), dir) else {
+            return at(*x, &k1, h);
+        };
+        let Some(k3) = self.oriented(&at(*x, &k2, 0.5 * h), dir) else {
+            return at(*x, &k1, h);
+        };
+        let Some(k4) = self.oriented(&at(*x, &k3, h), dir) else {
+            return at(*x, &k1, h);
+        };
+        std::array::from_fn(|i| x[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]))
+    }
+
+    /// Traces from `start` (whose certified box is `sbox`) until an end.
+    pub(crate) fn trace(&self, start: Start, sbox: Box4) -> Trace {
+        let x0 = center(&sbox);
+        let mut tr = Trace {
+            points: vec![(x0, true)],
+            tubes: Vec::new(),
+            turning: Vec::new(),
+            end: End::Stuck(sbox),
+        };
+        if let Start::Turning(k) = start {
+            tr.turning.push(k);
+        }
+        let Some(t0) = self.sys.tangent(&x0) else {
+            return tr;
+        };
+        let mut dir = t0;
+        if let Start::Crossing(_) = start {
+            // Inward across the face(s) the crossing lies on.
+            let faces: Vec<(usize, f64)> = (0..4)
+                .filter_map(|d| {
+                    if sbox[d][0] <= 0.0 {
+                        Some((d, 1.0))
+                    } else if sbox[d][1] >= 1.0 {
+                        Some((d, -1.0))
+                    } else {
+                        None
+                    }
+                })
+                .collect();
+            let Some(&(d, s)) = faces.iter().max_by(|a, b| t0[a.0].abs().total_cmp(&t0[b.0].abs())) else {
+                return tr;
+            };
+            if t0[d] * s < 0.0 {
+                dir = t0.map(|c| -c);
+            }
+            if faces.iter().any(|&(e, s)| dir[e] * s <= 0.0) {
+                // The curve only touches the domain here (a corner or edge).
+                tr.end = End::Crossing(match start {
+                    Start::Crossing(k) => k,
+                    Start::Turning(k) => k,
+                });
+                return tr;
+            }
+        }
+        let mut x = x0;
+        let mut xbox = sbox;
+        let mut h = 0.02f64;
+        loop {
+            if tr.points.len() >= self.max_points {
+                tr.end = End::Stuck(xbox);
+                return tr;
+            }
+            match self.step(&x, &xbox, &dir, h, start, &mut tr) {
+                Outcome::Retry => {
+                    h *= 0.5;
+                    if h < MIN_STEP {
+                        tr.end = End::Stuck(xbox);
+                        return tr;
+                    }
+                }
+                Outcome::Last(tube, end) => {
+                    tr.tubes.push(tube);
+                    match end {
+                        End::Crossing(k) => tr.points.push((center(&self.crossings[k]), true)),
+                        End::Closed | End::Stuck(_) => {}
+                    }
+                    tr.end = end;
+                    return tr;
+                }
+                Outcome::Step(xn, nbox, tube) => {
+                    tr.tubes.push(tube);
+                    tr.points.push((xn, nbox.is_some()));
+                    let Some(t) = self.oriented(&xn, &dir) else {
+                        tr.end = End::Stuck(tube);
+                        return tr;
+                    };
+                    dir = t;
+                    x = xn;
+                    xbox = nbox.unwrap_or(tube);
+                    h = (h * 1.5).min(MAX_STEP);
+                }
+            }
+        }
+    }
+
+    /// Proposes, checks and proves one step of length `h` (module docs).
+    fn step(&self, x: &[f64; 4], xbox: &Box4, dir: &[f64; 4], h: f64, start: Start, tr: &mut Trace) -> Outcome {
+        let pred = self.predict(x, dir, h);
+        let mid: [f64; 4] = std::array::from_fn(|i| 0.5 * (x[i] + pred[i]));
+        let Some(tm) = self.oriented(&mid, dir) else {
+            return Outcome::Retry;
+        };
+        let p = (0..4).max_by(|&a, &b| tm[a].abs().total_cmp(&tm[b].abs())).unwrap_or(0);
+        let Some(xn) = self.sys.correct(pred, p) else {
+            return Outcome::Retry;
+        };
+        if (xn[p] - x[p]) * tm[p] <= 0.0 {
+            return Outcome::Retry;
+        }
+        let Some(xm) = self.sys.correct(std::array::from_fn(|i| 0.5 * (x[i] + xn[i])), p) else {
+            return Outcome::Retry;
+        };
+        let (a, b, m) = (
+            (self.xyz)(x[0], x[1]),
+            (self.xyz)(xn[0], xn[1]),
+            (self.xyz)(xm[0], xm[1]),
+        );
+        let dev = (0..3).map(|i| (m[i] - 0.5 * (a[i] + b[i])).powi(2)).sum::<f64>().sqrt();
+        // NaN counts as too far.
+        if dev.partial_cmp(&self.tol) != Some(std::cmp::Ordering::Less) && h > 1e-6 {
+            return Outcome::Retry;
+        }
+        let Some(tube) = self.prove(x, &xm, &xn, p, xbox) else {
+            return Outcome::Retry;
+        };
+        let first = tr.tubes.is_empty();
+        // Crossings in the tube.
+        let mut hits = Vec::new();
+        for (k, c) in self.crossings.iter().enumerate() {
+            if first && matches!(start, Start::Crossing(s) if s == k) {
+                continue;
+            }
+            if overlap(c, &tube) {
+                if !inside(c, &tube) {
+                    return Outcome::Retry;
+                }
+                hits.push(k);
+            }
+        }
+        if self.undecided.iter().any(|u| overlap(u, &tube)) {
+            return Outcome::Retry;
+        }
+        if hits.len() > 1 {
+            return Outcome::Retry;
+        }
+        if hits.is_empty() && !in_domain(&xn) {
+            // The arc leaves the domain, so a crossing lies in the tube;
+            // none was found whole in it: a smaller step.
+            return Outcome::Retry;
+        }
+        let mut found = Vec::new();
+        for (k, t) in self.turning.iter().enumerate() {
+            let own = matches!(start, Start::Turning(s) if s == k);
+            if own && tr.tubes.len() < 2 {
+                continue;
+            }
+            if overlap(t, &tube) {
+                if !inside(t, &tube) {
+                    return Outcome::Retry;
+                }
+                found.push(k);
+            }
+        }
+        let closed = found.iter().any(|&k| matches!(start, Start::Turning(s) if s == k));
+        if closed || !hits.is_empty() {
+            for k in found {
+                if !tr.turning.contains(&k) {
+                    tr.turning.push(k);
+                }
+            }
+            let end = if closed { End::Closed } else { End::Crossing(hits[0]) };
+            return Outcome::Last(tube, end);
+        }
+        let nbox = self.sys.certify_point(&xn, p).filter(|b| inside(b, &tube));
+        let Some(nb) = nbox else {
+            return Outcome::Retry;
+        };
+        for k in found {
+            if !tr.turning.contains(&k) {
+                tr.turning.push(k);
+            }
+        }
+        Outcome::Step(xn, Some(nb), tube)
+    }
+
+    /// The tube around the step `x → xn` (midpoint `xm`) along axis `p`,
+    /// holding the previous point's box; `None` if not proven.
+    fn prove(&self, x: &[f64; 4], xm: &[f64; 4], xn: &[f64; 4], p: usize, xbox: &Box4) -> Option<Box4> {
+        let q = others(p);
+        let len = (xn[p] - x[p]).abs();
+        let pad = 1e-3 * len + (xbox[p][1] - xbox[p][0]) + 1e-13;
+        let pr = [x[p].min(xn[p]) - pad, x[p].max(xn[p]) + pad];
+        for grow in [0.25, 1.0] {
+            let y: [[f64; 2]; 3] = std::array::from_fn(|k| {
+                let c = q[k];
+                let lo = x[c].min(xm[c]).min(xn[c]).min(xbox[c][0]);
+                let hi = x[c].max(xm[c]).max(xn[c]).max(xbox[c][1]);
+                let r = grow * (hi - lo) + 0.05 * grow * len + 1e-12;
+                [lo - r, hi + r]
+            });
+            if self.sys.tube(p, pr, y).is_some() {
+                let mut tube: Box4 = [pr; 4];
+                for (k, &c) in q.iter().enumerate() {
+                    tube[c] = y[k];
+                }
+                if inside(xbox, &tube) {
+                    return Some(tube);
+                }
+            }
+        }
+        None
+    }
+}
