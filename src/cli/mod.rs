@@ -7,6 +7,7 @@ mod input;
 mod json;
 mod ray;
 mod solve;
+mod ssi;
 mod tables;
 
 use clap::{Parser, Subcommand};
@@ -34,6 +35,8 @@ enum Command {
     Ray(ray::RayArgs),
     /// Referee claimed ray hits (a fast solver's) against the certified hits.
     Crosscheck(crosscheck::CrosscheckArgs),
+    /// Every branch of the intersection curve of two patches, each point certified.
+    Ssi(ssi::SsiArgs),
     /// Print the exact Bernstein–Bézier coefficients of a polynomial in u, v.
     Bernstein(bernstein::BernsteinArgs),
 }
@@ -50,7 +53,9 @@ pub fn main() -> ExitCode {
             return ExitCode::SUCCESS;
         }
         Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
-            eprintln!("rootclip: missing subcommand (bernstein, crosscheck, ray, solve, tables); see rootclip --help");
+            eprintln!(
+                "rootclip: missing subcommand (bernstein, crosscheck, ray, solve, ssi, tables); see rootclip --help"
+            );
             return ExitCode::from(2);
         }
         Err(e) => {
@@ -72,6 +77,7 @@ pub fn main() -> ExitCode {
         Command::Ray(args) => ray::run(&args),
         Command::Crosscheck(args) => crosscheck::run(&args),
         Command::Solve(args) => solve::run(&args),
+        Command::Ssi(args) => ssi::run(&args),
     };
     match out {
         Ok(out) => {
