@@ -86,7 +86,8 @@ fn crossings(sys: &System, opts: &NdOptions, out: &mut Starts) {
                 let (deg3, c) = face(sys.coeffs(e), &deg, d, end);
                 BernsteinNd { deg: deg3, c }
             });
-            match solve_nd(&eqs, opts) {
+            let res = solve_nd(&eqs, opts);
+            match res {
                 Ok(sol) => {
                     out.boxes += sol.stats.boxes;
                     for r in &sol.roots {

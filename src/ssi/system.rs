@@ -147,23 +147,26 @@ impl System {
         for (k, &c) in q.iter().enumerate() {
             at[c] = [ym[k], ym[k]];
         }
-        // F(P, ỹ), enclosed twice: directly, and by the mean-value form
-        // F(p̃, ỹ) + ∂_p F(P, ỹ)·(P − p̃) (second order in |P|); both hold.
+        // C·F(P, ỹ), enclosed twice: directly, and by the mean-value form
+        // C·F(p̃, ỹ) + (C·∂_p F(P, ỹ))·(P − p̃), second order in |P| and
+        // free of the wrapping of a box by C (C·∂_p F ≈ −dy/dp); both hold.
         let pm = 0.5 * pr[0] + 0.5 * pr[1];
         let mut centre = at;
         centre[p] = [pm, pm];
         let dp = Iv::new(pr[0], pr[1]).sub(Iv::point(pm));
-        let fv: [Iv; 3] = std::array::from_fn(|e| {
-            let direct = eval_box(&self.f[e], &self.deg, &at);
+        let direct: [Iv; 3] = std::array::from_fn(|e| eval_box(&self.f[e], &self.deg, &at));
+        let f0: [Iv; 3] = std::array::from_fn(|e| eval_box(&self.f[e], &self.deg, &centre));
+        let fp: [Iv; 3] = std::array::from_fn(|e| {
             let (deg, c) = &self.df[e][p];
-            let mv = eval_box(&self.f[e], &self.deg, &centre).add(eval_box(c, deg, &at).mul(dp));
-            direct.meet(mv).unwrap_or(mv)
+            eval_box(c, deg, &at)
         });
+        let row = |r: usize, v: &[Iv; 3]| (0..3).fold(Iv::point(0.0), |s, c| s.add(Iv::point(cm[r][c]).mul(v[c])));
         let mut out = [[0.0; 2]; 3];
         for r in 0..3 {
-            let mut s = Iv::point(ym[r]);
+            let mv = row(r, &f0).add(row(r, &fp).mul(dp));
+            let cf = row(r, &direct).meet(mv).unwrap_or(mv);
+            let mut s = Iv::point(ym[r]).sub(cf);
             for c in 0..3 {
-                s = s.sub(Iv::point(cm[r][c]).mul(fv[c]));
                 let mut m = Iv::point(if r == c { 1.0 } else { 0.0 });
                 for k in 0..3 {
                     m = m.sub(Iv::point(cm[r][k]).mul(jac[k][c]));
