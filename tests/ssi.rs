@@ -85,3 +85,70 @@ fn coplanar_patches_are_an_overlap() {
     assert!(!out.complete);
     assert!(out.singular.iter().any(|s| s.kind == SingularKind::Overlap));
 }
+
+#[test]
+fn two_bumps_make_two_loops() {
+    // z = (x² − 1/2)² + y² over [−1, 1]² (degree (4, 2)) cut by z = 1/10:
+    // two closed loops around x = ±√½, apart (at x = 0, z ≥ 1/4).
+    let px = [0.25, -0.75, 19.0 / 12.0, -0.75, 0.25];
+    let sq = [1.0, -1.0, 1.0];
+    let mut pts = Vec::new();
+    for (i, p) in px.iter().enumerate() {
+        for (j, q) in sq.iter().enumerate() {
+            pts.push(DVec3::new(-1.0 + 0.5 * i as f64, j as f64 - 1.0, p + q));
+        }
+    }
+    let bumps = Patch::from(TensorPatch::new(4, 2, pts, None).unwrap());
+    let a = plane(0.1, 2.0);
+    let out = intersect_surfaces(&a, &bumps, &SsiOptions::default().with_tol(1e-4)).unwrap();
+    assert!(out.complete, "{:?}", out.singular);
+    assert_eq!(out.branches.len(), 2);
+    assert!(out.branches.iter().all(|b| b.closed && b.points.len() > 8));
+    on_both(&a, &bumps, &out);
+    // One loop on each side of x = 0.
+    let sides: Vec<bool> = out.branches.iter().map(|b| b.points[0].xyz[0] > 0.0).collect();
+    assert!(sides[0] != sides[1]);
+    for b in &out.branches {
+        assert!(b.points.iter().all(|p| (p.xyz[0] > 0.0) == (b.points[0].xyz[0] > 0.0)));
+        for p in &b.points {
+            let (x, y) = (p.xyz[0], p.xyz[1]);
+            assert!(((x * x - 0.5).powi(2) + y * y - 0.1).abs() < 1e-9);
+        }
+    }
+}
+
+#[test]
+fn rational_cylinder_against_a_tilted_plane() {
+    // The quarter cylinder x² + z² = 1 (x, z ≥ 0), y ∈ [0, 2], rational
+    // (degree (2, 1)), cut by z = 3/10 + y/5: one arc from y = 0 to y = 2.
+    let s = 0.5f64.sqrt();
+    let cyl = TensorPatch::new(
+        2,
+        1,
+        vec![
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(1.0, 2.0, 0.0),
+            DVec3::new(1.0, 0.0, 1.0),
+            DVec3::new(1.0, 2.0, 1.0),
+            DVec3::new(0.0, 0.0, 1.0),
+            DVec3::new(0.0, 2.0, 1.0),
+        ],
+        Some(vec![1.0, 1.0, s, s, 1.0, 1.0]),
+    )
+    .unwrap();
+    let p = |x: f64, y: f64| DVec3::new(x, y, 0.3 + 0.2 * y);
+    let tilted = TensorPatch::new(1, 1, vec![p(-2.0, -1.0), p(-2.0, 3.0), p(2.0, -1.0), p(2.0, 3.0)], None).unwrap();
+    let (a, b) = (Patch::from(tilted), Patch::from(cyl));
+    let out = intersect_surfaces(&a, &b, &SsiOptions::default()).unwrap();
+    assert!(out.complete, "{:?}", out.singular);
+    assert_eq!(out.branches.len(), 1);
+    let br = &out.branches[0];
+    assert!(!br.closed);
+    on_both(&a, &b, &out);
+    for q in &br.points {
+        let [x, y, z] = q.xyz;
+        assert!((x * x + z * z - 1.0).abs() < 1e-9 && (z - 0.3 - 0.2 * y).abs() < 1e-12);
+    }
+    let ends = [br.points[0].xyz[1], br.points[br.points.len() - 1].xyz[1]];
+    assert!(ends.iter().any(|y| y.abs() < 1e-9) && ends.iter().any(|y| (y - 2.0).abs() < 1e-9));
+}
