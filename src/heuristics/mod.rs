@@ -6,6 +6,12 @@
 //!   (Park, Ji & Ko 2013, §3 Eqs. (6)–(8) and (19)), the baseline every ray
 //!   tracer starts from.
 
+mod closed_form;
+pub use closed_form::{
+    ray_quadratic_bezier_2d, ray_segment_2d, ray_swept_quadratic_patch_3d, ClosedForm, CurveHit, FormulaFailure,
+    PatchHit,
+};
+
 use crate::ray::{Patch, Ray};
 use glam::{DMat3, DVec3};
 

@@ -200,8 +200,13 @@ pub fn solve_uni<P: UniPolynomial>(f: &P, opts: &UniOptions) -> Result<UniSoluti
     Ok(poly.solve(opts))
 }
 
-/// The polynomial on `[0, 1]` in the solver's kernels, scaled by a power of
-/// two (the roots do not move) so that its largest coefficient is near 1.
+/// Beyond this power of two (either way) the largest coefficient is scaled
+/// towards 1 (by a power of two: the roots do not move), so that the
+/// derivative's coefficients cannot overflow and tiny ones keep their bits
+/// clear of the subnormal range.
+const EXTREME_LOG2: i64 = 256;
+
+/// The polynomial on `[0, 1]` in the solver's kernels (see [`EXTREME_LOG2`]).
 struct Prepared {
     exact: Option<Vec<Q>>,
     iv: Vec<Iv>,
@@ -225,7 +230,11 @@ impl Prepared {
                     return Err(zero);
                 }
                 let e = c.iter().filter(|x| !x.is_zero()).map(log2).max().unwrap_or(0);
-                let c: Vec<Q> = c.iter().map(|x| times_pow2(x, -e)).collect();
+                let c: Vec<Q> = if e.abs() > EXTREME_LOG2 {
+                    c.iter().map(|x| times_pow2(x, -e)).collect()
+                } else {
+                    c
+                };
                 let iv: Vec<Interval> = c.iter().map(rational_to_interval).collect();
                 (Some(c), iv)
             }
@@ -239,8 +248,12 @@ impl Prepared {
                 } else {
                     0.0
                 };
-                let s = point(2f64.powi(-(e as i32)));
-                (None, enclosed.iter().map(|&x| x * s).collect())
+                if e.abs() > EXTREME_LOG2 as f64 {
+                    let s = point(2f64.powi(-(e as i32)));
+                    (None, enclosed.iter().map(|&x| x * s).collect())
+                } else {
+                    (None, enclosed)
+                }
             }
         };
         let iv = enclosed.iter().map(|x: &Interval| Iv::new(x.inf(), x.sup())).collect();
