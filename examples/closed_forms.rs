@@ -27,7 +27,7 @@ use tally::{Claim, Tally, TOL};
 
 const SEED: u64 = 0x5eed_0003_2008;
 /// Queries per family (random families get four times as many).
-const N: usize = 40;
+const N: usize = 400;
 const DIR: &str = "papers/ray-intersections-2008";
 
 /// One measured family: the tally and the time per query.
@@ -184,7 +184,7 @@ fn find<'a>(rows: &'a [Row], prefix: &str) -> &'a Tally {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut rng = Rng(SEED);
-    let heights = [1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-13, 1e-14, 1e-15, 1e-16];
+    let heights = [1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-14, 1e-15, 1e-16, 1e-17];
 
     // Quadratic Bézier curve, 2D.
     let mut quad_fams = vec![cases::quad_random(&mut rng, 4 * N)];
@@ -240,10 +240,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     for eps in [1e-4, 1e-8, 1e-12, 1e-15] {
-        swept_fams.push(cases::swept_near_vertical(&mut rng, N, eps));
+        swept_fams.push(cases::swept_near_vertical(&mut rng, N / 4, eps));
     }
-    swept_fams.push(cases::swept_tiny_off_edge(&mut rng, N, true));
-    swept_fams.push(cases::swept_tiny_off_edge(&mut rng, N, false));
+    swept_fams.push(cases::swept_tiny_off_edge(&mut rng, N / 8, true));
+    swept_fams.push(cases::swept_tiny_off_edge(&mut rng, N / 8, false));
     let mut swept_rows = Vec::new();
     for fam in &swept_fams {
         eprintln!("swept: {}", fam.name);
