@@ -340,7 +340,7 @@ pub(super) struct Setup<'a> {
 }
 
 impl<'a> Setup<'a> {
-    fn new(patch: &'a Patch, ray: &Ray, opts: &'a IterOptions) -> Self {
+    pub(super) fn new(patch: &'a Patch, ray: &Ray, opts: &'a IterOptions) -> Self {
         Self {
             patch,
             o: ray.origin(),
