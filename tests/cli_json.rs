@@ -422,15 +422,25 @@ fn heuristics_example_json_and_errors() {
     let summary = v["summary"].as_array().unwrap();
     assert_eq!(summary.len(), 4);
     let correct: u64 = summary.iter().map(|s| s["correct"].as_u64().unwrap()).sum();
-    assert_eq!(correct as usize, runs.iter().filter(|r| r["verdict"] == "correct").count());
+    assert_eq!(
+        correct as usize,
+        runs.iter().filter(|r| r["verdict"] == "correct").count()
+    );
     // Options reach the iterations.
     let v = ok_json(&["heuristics", "--example", "1", "--max-iterations", "1", "--json"], "");
-    assert!(v["runs"].as_array().unwrap().iter().all(|r| r["iterations"].as_u64().unwrap() <= 1));
+    assert!(v["runs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|r| r["iterations"].as_u64().unwrap() <= 1));
     assert_eq!(v["options"]["max_iterations"], 1);
     // Text: one summary row per method.
     let out = run(&["heuristics", "--example", "3"]);
     let text = String::from_utf8(out.stdout).unwrap();
-    assert!(out.status.success() && text.contains("second-order") && text.starts_with("Example 3"), "{text}");
+    assert!(
+        out.status.success() && text.contains("second-order") && text.starts_with("Example 3"),
+        "{text}"
+    );
     // Bad input: one line, exit 2.
     for bad in [
         &["heuristics", "--example", "4"][..],

@@ -7,7 +7,9 @@
 use rootclip::glam::DVec3;
 use rootclip::heuristics::experiment::{example, grid_starts, judge, run_example, run_starts, Verdict, REFEREE_TOL};
 use rootclip::heuristics::{iterate, jet, DomainRule, Failure, IterOptions, Iteration, Jet};
-use rootclip::ray::{classify, intersect, BsplineSurface, Claim, Patch, PatchSpec, Ray, RayOptions, TensorPatch, TriPatch};
+use rootclip::ray::{
+    classify, intersect, BsplineSurface, Claim, Patch, PatchSpec, Ray, RayOptions, TensorPatch, TriPatch,
+};
 use rootclip::solve::ClaimVerdict;
 use serde_json::Value;
 
@@ -32,7 +34,10 @@ fn rational_tensor() -> Patch {
     let s = 0.5f64.sqrt();
     let mut pts = Vec::new();
     let mut w = Vec::new();
-    for (i, (x, z, wi)) in [(1.0, 0.0, 1.0), (1.0, 1.0, s), (0.0, 1.0, 1.0)].into_iter().enumerate() {
+    for (i, (x, z, wi)) in [(1.0, 0.0, 1.0), (1.0, 1.0, s), (0.0, 1.0, 1.0)]
+        .into_iter()
+        .enumerate()
+    {
         for j in 0..3 {
             pts.push(DVec3::new(x, j as f64, z + 0.3 * (i * j) as f64));
             w.push(wi * [1.0, 1.3, 0.8][j]);
@@ -49,7 +54,11 @@ fn rational_triangle() -> Patch {
     for j in 0..=n {
         for i in 0..=n - j {
             let (u, v) = (i as f64 / 3.0, j as f64 / 3.0);
-            let bump = if i > 0 && j > 0 && i + j < n { 0.8 } else { 0.1 * (i as f64) };
+            let bump = if i > 0 && j > 0 && i + j < n {
+                0.8
+            } else {
+                0.1 * (i as f64)
+            };
             pts.push(DVec3::new(u, v, bump));
             w.push(1.0 + 0.2 * ((i + 2 * j) % 3) as f64);
         }
@@ -138,13 +147,19 @@ fn jets_are_exact_on_simple_surfaces() {
     assert_eq!(j.s, DVec3::new(u, v, u * u + v * v));
     assert_eq!(j.su, DVec3::new(1.0, 0.0, 2.0 * u));
     assert_eq!(j.sv, DVec3::new(0.0, 1.0, 2.0 * v));
-    assert_eq!((j.suu, j.suv, j.svv), (DVec3::new(0.0, 0.0, 2.0), DVec3::ZERO, DVec3::new(0.0, 0.0, 2.0)));
+    assert_eq!(
+        (j.suu, j.suv, j.svv),
+        (DVec3::new(0.0, 0.0, 2.0), DVec3::ZERO, DVec3::new(0.0, 0.0, 2.0))
+    );
 
     // A rational circle: |S − axis| = 1 gives S·S_u = 0 and S·S_uu + |S_u|² = 0
     // for the cross-section (x, z) of the quarter cylinder (no bending).
     let s = 0.5f64.sqrt();
     let arc = [(1.0, 0.0, 1.0), (1.0, 1.0, s), (0.0, 1.0, 1.0)];
-    let pts = arc.iter().flat_map(|&(x, z, _)| [DVec3::new(x, 0.0, z), DVec3::new(x, 2.0, z)]).collect();
+    let pts = arc
+        .iter()
+        .flat_map(|&(x, z, _)| [DVec3::new(x, 0.0, z), DVec3::new(x, 2.0, z)])
+        .collect();
     let w = arc.iter().flat_map(|&(_, _, w)| [w, w]).collect();
     let cyl: Patch = TensorPatch::new(2, 1, pts, Some(w)).unwrap().into();
     for u in [0.0, 0.2, 0.5, 0.9] {
@@ -153,7 +168,10 @@ fn jets_are_exact_on_simple_surfaces() {
         let (c, cu, cuu) = (flat(j.s), flat(j.su), flat(j.suu));
         assert!((c.length() - 1.0).abs() < 1e-15);
         assert!(c.dot(cu).abs() < 1e-15, "S·S_u at {u}");
-        assert!((c.dot(cuu) + cu.length_squared()).abs() < 1e-14, "S·S_uu + |S_u|² at {u}");
+        assert!(
+            (c.dot(cuu) + cu.length_squared()).abs() < 1e-14,
+            "S·S_uu + |S_u|² at {u}"
+        );
         assert!((j.sv - DVec3::new(0.0, 2.0, 0.0)).length() < 1e-15 && j.svv.length() < 1e-14);
     }
 
@@ -208,7 +226,11 @@ fn every_iteration_converges_on_planted_hits_of_every_patch_type() {
         }
         // The referee agrees: each end point is the proven nearest hit.
         let j = judge(patch, &ray, &outcomes, &RayOptions::default()).unwrap();
-        assert!(j.verdicts.iter().all(|v| v.0 == Verdict::Correct), "{name}: {:?}", j.verdicts);
+        assert!(
+            j.verdicts.iter().all(|v| v.0 == Verdict::Correct),
+            "{name}: {:?}",
+            j.verdicts
+        );
     }
 }
 
@@ -229,17 +251,31 @@ fn starts_and_ends_outside_the_domain_or_behind_the_origin_fail_with_their_reaso
     }
     // A triangle: a step across the hypotenuse is cut there (Clip), and the
     // iteration goes on from the edge.
-    let tri: Patch = TriPatch::new(1, vec![DVec3::ZERO, DVec3::X, DVec3::Y], None).unwrap().into();
+    let tri: Patch = TriPatch::new(1, vec![DVec3::ZERO, DVec3::X, DVec3::Y], None)
+        .unwrap()
+        .into();
     let ray = Ray::new(DVec3::new(0.5, 0.45, 1.0), -DVec3::Z).unwrap();
     for rule in [DomainRule::Clip, DomainRule::Clamp, DomainRule::Stop] {
-        let o = iterate(Iteration::FirstOrder, &tri, &ray, [0.05, 0.05], &opts.clone().with_domain_rule(rule));
+        let o = iterate(
+            Iteration::FirstOrder,
+            &tri,
+            &ray,
+            [0.05, 0.05],
+            &opts.clone().with_domain_rule(rule),
+        );
         let e = o.end.expect("the hit lies inside");
         assert!((e.u - 0.5).abs() < 1e-12 && (e.v - 0.45).abs() < 1e-12, "{rule:?}");
     }
     // The hit is outside the triangle (u + v = 1.2): stuck on the edge.
     let out = Ray::new(DVec3::new(0.6, 0.6, 1.0), -DVec3::Z).unwrap();
     for rule in [DomainRule::Clip, DomainRule::Clamp, DomainRule::Stop] {
-        let o = iterate(Iteration::Newton, &tri, &out, [0.2, 0.2], &opts.clone().with_domain_rule(rule));
+        let o = iterate(
+            Iteration::Newton,
+            &tri,
+            &out,
+            [0.2, 0.2],
+            &opts.clone().with_domain_rule(rule),
+        );
         assert_eq!(o.failure, Some(Failure::LeftDomain), "{rule:?}: {o:?}");
     }
 }
@@ -258,11 +294,21 @@ fn first_steps_are_the_scalar_newton_and_halley_steps() {
     let ray = Ray::new(DVec3::new(-1.0, 0.5, z0), DVec3::X).unwrap();
     let one_step = IterOptions::default().with_tol(1.0);
     let (f, df, ddf) = (1.0 - z0, 3.0, 6.0); // u³ − z₀ and its derivatives at u = 1
-    let newton = iterate(Iteration::Newton, &cubic, &ray, [1.0, 0.5], &one_step).end.unwrap();
-    assert!((newton.u - (1.0 - f / df)).abs() < 1e-15 && newton.v == 0.5, "{newton:?}");
-    let halley = iterate(Iteration::Halley, &cubic, &ray, [1.0, 0.5], &one_step).end.unwrap();
+    let newton = iterate(Iteration::Newton, &cubic, &ray, [1.0, 0.5], &one_step)
+        .end
+        .unwrap();
+    assert!(
+        (newton.u - (1.0 - f / df)).abs() < 1e-15 && newton.v == 0.5,
+        "{newton:?}"
+    );
+    let halley = iterate(Iteration::Halley, &cubic, &ray, [1.0, 0.5], &one_step)
+        .end
+        .unwrap();
     let want = 1.0 - 2.0 * f * df / (2.0 * df * df - f * ddf);
-    assert!((halley.u - want).abs() < 1e-15 && halley.v == 0.5, "{halley:?} vs {want}");
+    assert!(
+        (halley.u - want).abs() < 1e-15 && halley.v == 0.5,
+        "{halley:?} vs {want}"
+    );
     // Both converge to the cube root; Halley in fewer steps.
     let opts = IterOptions::default().with_tol(1e-14);
     let (n, h) = (
@@ -318,7 +364,10 @@ fn case_1_ray_parallel_to_the_tangent_plane_at_the_start() {
     // second-order step lands on the nearer hit (x = −½, u = ¼) at once.
     let o = iterate(Iteration::SecondOrder, &bowl, &ray, [0.5, 0.5], &opts);
     let e = o.end.expect("Case 1 is no obstacle to the second-order iteration");
-    assert!((e.u - 0.25).abs() < 1e-12 && (e.v - 0.5).abs() < 1e-12 && (e.t - 1.5).abs() < 1e-12, "{o:?}");
+    assert!(
+        (e.u - 0.25).abs() < 1e-12 && (e.v - 0.5).abs() < 1e-12 && (e.t - 1.5).abs() < 1e-12,
+        "{o:?}"
+    );
     assert!(o.iterations <= 2, "{o:?}");
     let j = judge(&bowl, &ray, &[o], &RayOptions::default()).unwrap();
     assert_eq!(j.verdicts[0].0, Verdict::Correct);
@@ -337,11 +386,23 @@ fn case_2_and_3_the_tangential_ray_of_example_3() {
     // plane there (Case 1) and the plane through the ray and the point is
     // tangent to the surface (N_A ∥ N_B, Case 3).
     let run = |m, start, o: &IterOptions| iterate(m, &ex.patch, &ex.ray, start, o);
-    assert_eq!(run(Iteration::Newton, [0.6, 0.5], &opts).failure, Some(Failure::SingularJacobian));
-    assert_eq!(run(Iteration::Halley, [0.6, 0.5], &opts).failure, Some(Failure::SingularJacobian));
-    assert_eq!(run(Iteration::FirstOrder, [0.6, 0.5], &opts).failure, Some(Failure::ParallelTangentPlane));
+    assert_eq!(
+        run(Iteration::Newton, [0.6, 0.5], &opts).failure,
+        Some(Failure::SingularJacobian)
+    );
+    assert_eq!(
+        run(Iteration::Halley, [0.6, 0.5], &opts).failure,
+        Some(Failure::SingularJacobian)
+    );
+    assert_eq!(
+        run(Iteration::FirstOrder, [0.6, 0.5], &opts).failure,
+        Some(Failure::ParallelTangentPlane)
+    );
     let no_projection = opts.clone().with_zero_tangent_projection(false);
-    assert_eq!(run(Iteration::SecondOrder, [0.6, 0.5], &no_projection).failure, Some(Failure::ZeroTangent));
+    assert_eq!(
+        run(Iteration::SecondOrder, [0.6, 0.5], &no_projection).failure,
+        Some(Failure::ZeroTangent)
+    );
     let o = run(Iteration::SecondOrder, [0.6, 0.5], &opts);
     let paper = &tangential["paper_uv"];
     let e = o.end.expect("Case 3's projection converges");
@@ -350,8 +411,14 @@ fn case_2_and_3_the_tangential_ray_of_example_3() {
     // Case 2: started on the tangential hit itself, Newton's Jacobian is
     // singular and the first-order iteration's ray is in the tangent plane;
     // the second-order iteration sees a point on the ray and stops there.
-    assert_eq!(run(Iteration::Newton, [0.5, 0.5], &opts).failure, Some(Failure::SingularJacobian));
-    assert_eq!(run(Iteration::FirstOrder, [0.5, 0.5], &opts).failure, Some(Failure::ParallelTangentPlane));
+    assert_eq!(
+        run(Iteration::Newton, [0.5, 0.5], &opts).failure,
+        Some(Failure::SingularJacobian)
+    );
+    assert_eq!(
+        run(Iteration::FirstOrder, [0.5, 0.5], &opts).failure,
+        Some(Failure::ParallelTangentPlane)
+    );
     assert_eq!(run(Iteration::SecondOrder, [0.5, 0.5], &opts).iterations, 1);
     // From elsewhere the Jacobian degenerates only near the end, so Newton,
     // Halley and the first-order iteration slow to linear convergence: a
@@ -359,10 +426,18 @@ fn case_2_and_3_the_tangential_ray_of_example_3() {
     // takes 8 steps) runs out.
     let short = opts.clone().with_max_iterations(10);
     for m in [Iteration::Newton, Iteration::Halley, Iteration::FirstOrder] {
-        assert_eq!(run(m, [0.3, 0.3], &short).failure, Some(Failure::NoConvergence), "{}", m.code());
+        assert_eq!(
+            run(m, [0.3, 0.3], &short).failure,
+            Some(Failure::NoConvergence),
+            "{}",
+            m.code()
+        );
     }
     let ex1 = run_example(1, &short).unwrap();
-    assert!(ex1.iter().filter(|r| r.verdict == Verdict::Correct).all(|r| r.iterations <= 8));
+    assert!(ex1
+        .iter()
+        .filter(|r| r.verdict == Verdict::Correct)
+        .all(|r| r.iterations <= 8));
 }
 
 // -------------------------------------------------------------- experiment
@@ -389,7 +464,10 @@ fn example_patches_match_the_fixtures_and_the_printed_roots() {
         let half_ulp = 0.5 * 10f64.powi(-digits);
         for (got, want) in [(near.bx.u, &ray["paper_uv"][0]), (near.bx.v, &ray["paper_uv"][1])] {
             let want = want.as_f64().unwrap();
-            assert!(got[0] - half_ulp <= want && want <= got[1] + half_ulp, "{got:?} vs {want}");
+            assert!(
+                got[0] - half_ulp <= want && want <= got[1] + half_ulp,
+                "{got:?} vs {want}"
+            );
         }
     }
     assert!(example(0).is_err() && example(4).is_err());
@@ -408,7 +486,12 @@ fn a_bezier_knotted_bspline_iterates_as_its_tensor_patch() {
                 iterate(m, &ex.patch, &ex.ray, s, &IterOptions::default()),
                 iterate(m, &bs, &ex.ray, s, &IterOptions::default()),
             );
-            assert_eq!((a.failure, a.iterations), (b.failure, b.iterations), "{} from {s:?}", m.code());
+            assert_eq!(
+                (a.failure, a.iterations),
+                (b.failure, b.iterations),
+                "{} from {s:?}",
+                m.code()
+            );
             if let (Some(x), Some(y)) = (a.end, b.end) {
                 assert!((x.u - y.u).abs() < 1e-12 && (x.v - y.v).abs() < 1e-12);
             }
@@ -439,11 +522,22 @@ fn experiment_verdicts_agree_with_classify_claim_by_claim() {
                 (ClaimVerdict::Spurious, _) => Verdict::NotAHit,
                 (v, _) => panic!("a single claim is never {v:?}"),
             };
-            assert_eq!(r.verdict, expected, "example {n}, {} from {:?}: {e:?}", r.method.code(), r.start);
-            seen[[Verdict::Correct, Verdict::WrongHit, Verdict::NotAHit, Verdict::Undecided]
-                .iter()
-                .position(|&v| v == expected)
-                .unwrap()] += 1;
+            assert_eq!(
+                r.verdict,
+                expected,
+                "example {n}, {} from {:?}: {e:?}",
+                r.method.code(),
+                r.start
+            );
+            seen[[
+                Verdict::Correct,
+                Verdict::WrongHit,
+                Verdict::NotAHit,
+                Verdict::Undecided,
+            ]
+            .iter()
+            .position(|&v| v == expected)
+            .unwrap()] += 1;
         }
         match n {
             // Example 1 has one hit: nothing can be a wrong hit.
@@ -463,7 +557,15 @@ fn run_starts_keeps_the_order_of_methods_and_starts() {
     assert_eq!(starts.len(), 9);
     assert_eq!(starts[1], [0.0, 0.5]);
     let methods = [Iteration::SecondOrder, Iteration::Newton];
-    let runs = run_starts(&ex.patch, &ex.ray, &methods, &starts, &IterOptions::default(), &RayOptions::default()).unwrap();
+    let runs = run_starts(
+        &ex.patch,
+        &ex.ray,
+        &methods,
+        &starts,
+        &IterOptions::default(),
+        &RayOptions::default(),
+    )
+    .unwrap();
     assert_eq!(runs.len(), 18);
     for (k, r) in runs.iter().enumerate() {
         assert_eq!((r.method, r.start), (methods[k / 9], starts[k % 9]));

@@ -106,10 +106,7 @@ fn text(example: u8, opts: &IterOptions, runs: &[Run], tallies: &[Tally]) -> Str
         } else {
             "-".into()
         };
-        out += &format!(
-            "{:12} {c:>8} {w:>10} {n:>10} {u:>10} {f:>7}  {mean}\n",
-            t.method.code()
-        );
+        out += &format!("{:12} {c:>8} {w:>10} {n:>10} {u:>10} {f:>7}  {mean}\n", t.method.code());
     }
     out += "\nVerdict per start (row u0 = 0, 0.1, …, 1; column v0 = 0, 0.1, …, 1): C correct, W wrong hit, N not a hit, U undecided, . failed\n";
     let cols: Vec<Vec<&Run>> = Iteration::ALL
@@ -124,7 +121,10 @@ fn text(example: u8, opts: &IterOptions, runs: &[Run], tallies: &[Tally]) -> Str
     for row in 0..11 {
         out.push('\n');
         for col in &cols {
-            let cells: String = col[row * 11..(row + 1) * 11].iter().map(|r| letter(r.verdict)).collect();
+            let cells: String = col[row * 11..(row + 1) * 11]
+                .iter()
+                .map(|r| letter(r.verdict))
+                .collect();
             out += &format!("{cells:13}");
         }
         out.truncate(out.trim_end().len());

@@ -2,41 +2,21 @@
 //! (Park, Ji & Ko 2013, §4.3).
 
 use super::iteration::{Failure, Outcome, Setup};
-use super::linalg::{project2, SINGULAR};
 use super::jet::frame;
+use super::linalg::{above, project2, SINGULAR};
 
-/// The first-order geometric iteration for the hit of the ray `o + t·d`
-/// with `S(u, v)`.
-///
-/// * **Formula** (Eqs. (22)–(24)): at `P = S(u, v)` the unit normal
-///   `N = S_u × S_v / |S_u × S_v|` (Eq. (22)); the ray meets the tangent
-///   plane at `t = (P − o)·N / (d·N)` (Eq. (23)), the point `q = o + t·d`;
-///   `(Δu, Δv)` solves the normal equations
-///   `(q − P)·S_u = (S_u·S_u)Δu + (S_v·S_u)Δv`,
-///   `(q − P)·S_v = (S_u·S_v)Δu + (S_v·S_v)Δv` (Eq. (24)), i.e. moves along
-///   the projection of `q − P` on the tangent plane; until
-///   `(Δu² + Δv²)^{1/2} < δ`. As the Discussion shows (Eqs. (36)–(37)) this
-///   is Newton's step without a `t` unknown.
-/// * **Domain.** The paper states no rule here; [`IterOptions::domain_rule`](super::IterOptions::domain_rule)
-///   applies (default §4.4's, [`DomainRule::Clip`](super::DomainRule::Clip)).
-/// * **Rounding.** `f64`; the end point is a claim, its `t` the projection
-///   of `S(u, v)` on the ray.
-/// * **Degenerate cases.** `d·N = 0` within rounding (Case 1):
-///   [`Failure::ParallelTangentPlane`]; `S_u ∥ S_v`:
-///   [`Failure::SingularJacobian`].
-///
-/// Runnable example: [`iterate`](super::iterate) with [`Iteration::FirstOrder`](super::Iteration::FirstOrder).
+/// The [`Iteration::FirstOrder`](super::Iteration::FirstOrder) iteration (its docs hold the formula).
 pub(super) fn run(s: &Setup, start: [f64; 2]) -> Outcome {
     let mut uv = start;
     for k in 1..=s.opts.max_iterations {
         let (p, su, sv) = frame(s.patch, uv[0], uv[1]);
         let n = su.cross(sv);
-        if !(n.length() > SINGULAR * su.length() * sv.length()) {
+        if !above(n.length(), SINGULAR * su.length() * sv.length()) {
             return Outcome::failed(Failure::SingularJacobian, k);
         }
         let n = n.normalize();
         let dn = s.d.dot(n);
-        if !(dn.abs() > SINGULAR * s.d.length()) {
+        if !above(dn.abs(), SINGULAR * s.d.length()) {
             return Outcome::failed(Failure::ParallelTangentPlane, k);
         }
         let q = s.o + s.d * ((p - s.o).dot(n) / dn);

@@ -2,28 +2,12 @@
 //! and §4.2, after Cuyt & Rall 1985).
 
 use super::iteration::{Failure, Outcome, Setup};
-use super::linalg::solve3;
 use super::jet::jet;
+use super::linalg::solve3;
 use super::newton::advance;
 use glam::DVec3;
 
-/// Halley's method for `G(u, v, t) = S(u, v) − (o + t·d) = 0`.
-///
-/// * **Formula** (Eqs. (9)–(12), (21)): with `J = [S_u, S_v, −d]`, the
-///   Newton step `Q = −J⁻¹G` (Eq. (10)) and
-///   `b = J⁻¹ [Qᵀ H(G_x) Q, Qᵀ H(G_y) Q, Qᵀ H(G_z) Q]` (Eqs. (11)–(12)),
-///   the step is, component by component, `ΔX_k = Q_k² / (Q_k + b_k / 2)`
-///   (Eq. (9), whose fraction the PDF text loses: "Δ X = Q 2 Q + 1 2 b";
-///   read so because it is the only reading that gives the scalar Halley
-///   step `−2ff'/(2f'² − ff'')` for one unknown). `G` is linear in `t`, so
-///   each Hessian (Eq. (21)) has only its `(u, v)` block, and
-///   `Qᵀ H(G) Q = Q_u² S_uu + 2 Q_u Q_v S_uv + Q_v² S_vv`.
-/// * **Rounding.** `f64`; the end point is a claim.
-/// * **Degenerate cases.** As Newton ([`Failure::SingularJacobian`]); a
-///   component with `Q_k = 0` takes `ΔX_k = 0` (the limit), one with
-///   `Q_k + b_k/2 = 0 ≠ Q_k` has no step ([`Failure::NonFinite`]).
-///
-/// Runnable example: [`iterate`](super::iterate) with [`Iteration::Halley`](super::Iteration::Halley).
+/// The [`Iteration::Halley`](super::Iteration::Halley) iteration (its docs hold the formula).
 pub(super) fn run(s: &Setup, start: [f64; 2]) -> Outcome {
     let [mut u, mut v] = start;
     let mut t = s.project(jet(s.patch, u, v).s);

@@ -15,16 +15,143 @@ use glam::DVec3;
     serde(rename_all = "kebab-case")
 )]
 pub enum Iteration {
-    /// Newton–Raphson on `G(u, v, t)` (§3.1, §4.1: Eqs. (6)–(8), (19)–(20)).
+    /// Newton–Raphson for `G(u, v, t) = S(u, v) − (o + t·d) = 0`.
+    ///
+    /// * **Formula** (Eqs. (6)–(8), (19)–(20)): `X = (u, v, t)`,
+    ///   `J = [S_u, S_v, −d]`, `ΔX = −J⁻¹ G(X)`, `X ← X + ΔX` until
+    ///   `|ΔX|₂ < δ`. The start's `t₀` (the paper does not give one) is the
+    ///   projection of `S(u₀, v₀)` on the ray.
+    /// * **Rounding.** `f64`, Cramer's rule; the end point is a claim.
+    /// * **Degenerate cases.** `J` singular within rounding (the ray parallel
+    ///   to the tangent plane, Case 1 of the Discussion, or `S_u ∥ S_v`):
+    ///   [`Failure::SingularJacobian`]. A tangential hit (Case 2) makes `J`
+    ///   singular at the root: the iteration slows to linear convergence and
+    ///   may stop on the step limit or a singular `J`.
+    ///
+    /// ```
+    /// use rootclip::heuristics::experiment::example;
+    /// use rootclip::heuristics::{iterate, IterOptions, Iteration};
+    /// let ex = example(1)?; // the paper's Example 1: one hit, at (0.788660789, 0.895380221)
+    /// let out = iterate(Iteration::Newton, &ex.patch, &ex.ray, [0.6, 0.9], &IterOptions::default());
+    /// let end = out.end.expect("converges from here");
+    /// assert!((end.u - 0.788660789).abs() < 1e-9 && (end.v - 0.895380221).abs() < 1e-9);
+    /// // From (0, 0) it leaves the patch.
+    /// let out = iterate(Iteration::Newton, &ex.patch, &ex.ray, [0.0, 0.0], &IterOptions::default());
+    /// assert_eq!(out.failure.map(|f| f.code()), Some("left_domain"));
+    /// # Ok::<(), rootclip::Error>(())
+    /// ```
     Newton,
-    /// Multivariate Halley on `G(u, v, t)` (§3.2, §4.2: Eqs. (9)–(12), (21)).
+    /// Halley's method for `G(u, v, t) = S(u, v) − (o + t·d) = 0`.
+    ///
+    /// * **Formula** (Eqs. (9)–(12), (21)): with `J = [S_u, S_v, −d]`, the
+    ///   Newton step `Q = −J⁻¹G` (Eq. (10)) and
+    ///   `b = J⁻¹ [Qᵀ H(G_x) Q, Qᵀ H(G_y) Q, Qᵀ H(G_z) Q]` (Eqs. (11)–(12)),
+    ///   the step is, component by component, `ΔX_k = Q_k² / (Q_k + b_k / 2)`
+    ///   (Eq. (9), whose fraction the PDF text loses: "Δ X = Q 2 Q + 1 2 b";
+    ///   read so because it is the only reading that gives the scalar Halley
+    ///   step `−2ff'/(2f'² − ff'')` for one unknown). `G` is linear in `t`, so
+    ///   each Hessian (Eq. (21)) has only its `(u, v)` block, and
+    ///   `Qᵀ H(G) Q = Q_u² S_uu + 2 Q_u Q_v S_uv + Q_v² S_vv`.
+    /// * **Rounding.** `f64`; the end point is a claim.
+    /// * **Degenerate cases.** As Newton ([`Failure::SingularJacobian`]); a
+    ///   component with `Q_k = 0` takes `ΔX_k = 0` (the limit), one with
+    ///   `Q_k + b_k/2 = 0 ≠ Q_k` has no step ([`Failure::NonFinite`]).
+    ///
+    /// ```
+    /// use rootclip::heuristics::experiment::example;
+    /// use rootclip::heuristics::{iterate, IterOptions, Iteration};
+    /// let ex = example(1)?;
+    /// let opts = IterOptions::default();
+    /// let halley = iterate(Iteration::Halley, &ex.patch, &ex.ray, [0.6, 0.9], &opts);
+    /// let newton = iterate(Iteration::Newton, &ex.patch, &ex.ray, [0.6, 0.9], &opts);
+    /// assert!(halley.end.is_some() && halley.iterations <= newton.iterations);
+    /// # Ok::<(), rootclip::Error>(())
+    /// ```
     Halley,
-    /// The first-order geometric iteration: the ray against the tangent
-    /// plane (§4.3: Eqs. (22)–(24)).
+    /// The first-order geometric iteration for the hit of the ray `o + t·d`
+    /// with `S(u, v)`.
+    ///
+    /// * **Formula** (Eqs. (22)–(24)): at `P = S(u, v)` the unit normal
+    ///   `N = S_u × S_v / |S_u × S_v|` (Eq. (22)); the ray meets the tangent
+    ///   plane at `t = (P − o)·N / (d·N)` (Eq. (23)), the point `q = o + t·d`;
+    ///   `(Δu, Δv)` solves the normal equations
+    ///   `(q − P)·S_u = (S_u·S_u)Δu + (S_v·S_u)Δv`,
+    ///   `(q − P)·S_v = (S_u·S_v)Δu + (S_v·S_v)Δv` (Eq. (24)), i.e. moves along
+    ///   the projection of `q − P` on the tangent plane; until
+    ///   `(Δu² + Δv²)^{1/2} < δ`. As the Discussion shows (Eqs. (36)–(37)) this
+    ///   is Newton's step without a `t` unknown.
+    /// * **Domain.** The paper states no rule here; [`IterOptions::domain_rule`](IterOptions::domain_rule)
+    ///   applies (default §4.4's, [`DomainRule::Clip`](DomainRule::Clip)).
+    /// * **Rounding.** `f64`; the end point is a claim, its `t` the projection
+    ///   of `S(u, v)` on the ray.
+    /// * **Degenerate cases.** `d·N = 0` within rounding (Case 1):
+    ///   [`Failure::ParallelTangentPlane`]; `S_u ∥ S_v`:
+    ///   [`Failure::SingularJacobian`].
+    ///
+    /// ```
+    /// use rootclip::heuristics::experiment::example;
+    /// use rootclip::heuristics::{iterate, Failure, IterOptions, Iteration};
+    /// // Example 3: at (0.6, 0.5) the tangent plane contains the ray (Case 1).
+    /// let ex = example(3)?;
+    /// let out = iterate(Iteration::FirstOrder, &ex.patch, &ex.ray, [0.6, 0.5], &IterOptions::default());
+    /// assert_eq!(out.failure, Some(Failure::ParallelTangentPlane));
+    /// # Ok::<(), rootclip::Error>(())
+    /// ```
     FirstOrder,
-    /// The second-order geometric iteration: the ray against the osculating
-    /// parabola of the surface's section by the plane through the ray and
-    /// the current point (§4.4: Eqs. (25)–(35)).
+    /// The second-order geometric iteration for the hit of the ray `o + t·d`
+    /// with `S(u, v)`.
+    ///
+    /// * **Formula** (Eqs. (25)–(35)). At `P = S(u, v)` let plane A hold the ray
+    ///   and `P`, with unit normal `N_A = (P − o) × d / |(P − o) × d|`, and
+    ///   `N_B = S_u × S_v / |S_u × S_v|` (Eq. (28)). Their section `c` has the
+    ///   unit tangent `T = N_A × N_B / |N_A × N_B|` (Eq. (27)) and, to second
+    ///   order, `c(λ) ≈ P + λT + ½λ²K` (Eq. (26)) with the curvature vector
+    ///   `K = κ n = κ_B (N_B − cos θ N_A) / (1 − cos²θ)`, `cos θ = N_A·N_B`
+    ///   (Eq. (30); the PDF text reads "κ_B(1 − cos²θ)", a lost fraction: `K`
+    ///   lies in plane A, so `K·N_A = 0`, and Meusnier's theorem gives
+    ///   `K·N_B = κ_B`, which fixes the division). `κ_B = L u′² + 2M u′v′ + N v′²`
+    ///   (Eq. (31), `L = S_uu·N_B`, `M = S_uv·N_B`, `N = S_vv·N_B`) with
+    ///   `(u′, v′)` from `T = S_u u′ + S_v v′` by the normal equations
+    ///   (Eq. (32)). Writing `m = N_A × T` (the unit normal of `c` in plane A:
+    ///   this keeps a straight section, `K = 0`, well defined) and `k = K·m`,
+    ///   the dot products of `P + ΔλT + ½Δλ²K = o + d t` (Eq. (33)) with `T`
+    ///   and `m` (Eqs. (34)–(35)) are
+    ///   `Δλ − (d·T) t = (o − P)·T` and `½kΔλ² − (d·m) t = (o − P)·m`;
+    ///   eliminating `t` (multiplied through by `d·T`, so `d·T = 0` needs no
+    ///   division) leaves
+    ///   `½k(d·T) Δλ² − (d·m) Δλ + (d·m)(o − P)·T − (d·T)(o − P)·m = 0`.
+    ///   Of its roots `Δλ₁, Δλ₂`, with points `q₁, q₂` on the ray, the one on
+    ///   the origin's side of the plane through `q_mid = (q₁ + q₂)/2`
+    ///   perpendicular to `d` is taken (the paper's selection: the nearer
+    ///   one). Then `(Δu, Δv) = (u′, v′)Δλ`, until `(Δu² + Δv²)^{1/2} < δ`; a
+    ///   step out of the domain is cut where the segment leaves it (the
+    ///   paper's rule, [`DomainRule::Clip`](DomainRule::Clip)).
+    /// * **Choices where the paper is silent.** A negative discriminant (the
+    ///   parabola misses the ray) takes the vertex `Δλ = −b/2a`, the point of
+    ///   the parabola nearest the ray's line; a ray through `P` takes no step.
+    /// * **Special cases** (the Discussion). Case 1, the ray parallel to the
+    ///   tangent plane: `d·m = 0`, the equation is `½k(d·T)Δλ² = …`, solved as
+    ///   any other (if also `k = 0`: [`Failure::ParallelTangentPlane`]). Case
+    ///   2, a tangential hit: `d·m` and `(o − P)·m` tend to 0 together and the
+    ///   steps to 0. Case 3, `N_A ∥ N_B` (`sin θ ≤ 2⁻²⁶`, no tangent): `P` is
+    ///   projected on the ray, `q = o + ((P − o)·d/|d|²) d`, and `(Δu, Δv)`
+    ///   moves towards it as in Eq. (24) (or [`Failure::ZeroTangent`] when
+    ///   [`IterOptions::zero_tangent_projection`](IterOptions::zero_tangent_projection)
+    ///   is off).
+    /// * **Rounding.** `f64`; the end point is a claim, its `t` the projection
+    ///   of `S(u, v)` on the ray. `S_u ∥ S_v` within rounding:
+    ///   [`Failure::SingularJacobian`].
+    ///
+    /// ```
+    /// use rootclip::heuristics::experiment::example;
+    /// use rootclip::heuristics::{iterate, IterOptions, Iteration};
+    /// // Example 3, the tangential ray, from the paper's start (Cases 1 and 3 at once).
+    /// let ex = example(3)?;
+    /// let out = iterate(Iteration::SecondOrder, &ex.patch, &ex.ray, [0.6, 0.5], &IterOptions::default());
+    /// let end = out.end.expect("the projection of Case 3 converges");
+    /// assert!((end.u - 0.5).abs() < 1e-12 && (end.v - 0.5).abs() < 1e-12 && out.iterations <= 5);
+    /// # Ok::<(), rootclip::Error>(())
+    /// ```
     SecondOrder,
 }
 
@@ -240,11 +367,15 @@ impl Failure {
     /// A one-line English description for output.
     pub fn describe(self) -> &'static str {
         match self {
-            Failure::SingularJacobian => "the step's linear system is singular (ray parallel to the tangent plane, or S_u ∥ S_v)",
+            Failure::SingularJacobian => {
+                "the step's linear system is singular (ray parallel to the tangent plane, or S_u ∥ S_v)"
+            }
             Failure::LeftDomain => "the iteration left the parameter domain",
             Failure::NoConvergence => "no convergence within the iteration limit",
             Failure::ParallelTangentPlane => "the ray is parallel to the tangent plane (or to a straight section)",
-            Failure::ZeroTangent => "the plane through the ray and the point is tangent to the surface: the section has no tangent",
+            Failure::ZeroTangent => {
+                "the plane through the ray and the point is tangent to the surface: the section has no tangent"
+            }
             Failure::NonFinite => "a step or a point was not finite",
             Failure::BehindOrigin => "converged behind the ray's origin (t < 0)",
         }
@@ -284,8 +415,7 @@ impl Outcome {
 
 /// Runs `method` for the hit of `ray` with `patch` from the start `(u₀, v₀)`
 /// (in the patch's parameters: the unit square or triangle, a B-spline's
-/// knot rectangle). See each method's docs in the [module
-/// docs](super) for the formulas.
+/// knot rectangle). Each [`Iteration`] variant's docs give its formula.
 ///
 /// * **Convergence.** A step shorter than `opts.tol` ends the iteration;
 ///   the point after it is the end if it lies in the closed domain (within
@@ -329,8 +459,8 @@ pub fn iterate(method: Iteration, patch: &Patch, ray: &Ray, start: [f64; 2], opt
     }
 }
 
-/// Everything a method reads: the patch, the ray, the domain, the options
-/// and the domain rule that applies.
+/// Everything a method reads: the patch, the ray, the domain and the
+/// options.
 pub(super) struct Setup<'a> {
     pub(super) patch: &'a Patch,
     pub(super) o: DVec3,

@@ -182,18 +182,18 @@ fn homogeneous(points: &[DVec3], weights: Option<&[f64]>, k: usize) -> H4 {
 fn tensor_hjet(p: &TensorPatch, u: f64, v: f64) -> HJet {
     let (m, n) = p.degree();
     let (pts, wts) = (p.points(), p.weights());
-    let mut rows = [[[0.0; 4]; MAX_DEGREE + 1]; 3];
+    let (mut r0, mut r1, mut r2) = (
+        [[0.0; 4]; MAX_DEGREE + 1],
+        [[0.0; 4]; MAX_DEGREE + 1],
+        [[0.0; 4]; MAX_DEGREE + 1],
+    );
     let mut line = [[0.0; 4]; MAX_DEGREE + 1];
-    for i in 0..=m {
+    for (i, ((a, b), c)) in r0.iter_mut().zip(&mut r1).zip(&mut r2).take(m + 1).enumerate() {
         for (j, slot) in line[..=n].iter_mut().enumerate() {
             *slot = homogeneous(pts, wts, i * (n + 1) + j);
         }
-        let (a, b, c) = uni_jet2(&mut line[..=n], v);
-        rows[0][i] = a;
-        rows[1][i] = b;
-        rows[2][i] = c;
+        (*a, *b, *c) = uni_jet2(&mut line[..=n], v);
     }
-    let [mut r0, mut r1, mut r2] = rows;
     let (f, fu, fuu) = uni_jet2(&mut r0[..=m], u);
     let (fv, fuv, _) = uni_jet2(&mut r1[..=m], u);
     let (fvv, _, _) = uni_jet2(&mut r2[..=m], u);

@@ -9,13 +9,20 @@ use glam::DVec3;
 /// whatever the scale of the patch.
 pub(super) const SINGULAR: f64 = 64.0 * f64::EPSILON;
 
+/// `x > floor`: a size clearly above its degenerate floor. NaN is never
+/// above, so a NaN size counts as degenerate (the callers test
+/// `!above(..)` on purpose rather than `≤`).
+pub(super) fn above(x: f64, floor: f64) -> bool {
+    x > floor
+}
+
 /// `x` with `x₀c₀ + x₁c₁ + x₂c₂ = b` (Cramer's rule), or `None` when the
 /// columns are singular within [`SINGULAR`].
 pub(super) fn solve3(c: [DVec3; 3], b: DVec3) -> Option<DVec3> {
     let cross = c[1].cross(c[2]);
     let det = c[0].dot(cross);
     let scale = c[0].length() * c[1].length() * c[2].length();
-    if !(det.abs() > SINGULAR * scale) {
+    if !above(det.abs(), SINGULAR * scale) {
         return None;
     }
     Some(DVec3::new(b.dot(cross), c[0].dot(b.cross(c[2])), c[0].dot(c[1].cross(b))) / det)
@@ -28,7 +35,7 @@ pub(super) fn project2(a: DVec3, b: DVec3, r: DVec3) -> Option<[f64; 2]> {
     let (e, f, g) = (a.dot(a), a.dot(b), b.dot(b));
     // e·g − f² = |a × b|², computed as such to avoid the cancellation.
     let det = a.cross(b).length_squared();
-    if !(det > SINGULAR * SINGULAR * e * g) {
+    if !above(det, SINGULAR * SINGULAR * e * g) {
         return None;
     }
     let (ra, rb) = (r.dot(a), r.dot(b));

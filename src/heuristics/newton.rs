@@ -1,24 +1,11 @@
 //! Newton–Raphson on the ray–patch system (Park, Ji & Ko 2013, §3.1 and §4.1).
 
 use super::iteration::{Failure, Outcome, Setup};
-use super::linalg::solve3;
 use super::jet::frame;
+use super::linalg::solve3;
 use glam::DVec3;
 
-/// Newton–Raphson for `G(u, v, t) = S(u, v) − (o + t·d) = 0`.
-///
-/// * **Formula** (Eqs. (6)–(8), (19)–(20)): `X = (u, v, t)`,
-///   `J = [S_u, S_v, −d]`, `ΔX = −J⁻¹ G(X)`, `X ← X + ΔX` until
-///   `|ΔX|₂ < δ`. The start's `t₀` (the paper does not give one) is the
-///   projection of `S(u₀, v₀)` on the ray.
-/// * **Rounding.** `f64`, Cramer's rule; the end point is a claim.
-/// * **Degenerate cases.** `J` singular within rounding (the ray parallel
-///   to the tangent plane, Case 1 of the Discussion, or `S_u ∥ S_v`):
-///   [`Failure::SingularJacobian`]. A tangential hit (Case 2) makes `J`
-///   singular at the root: the iteration slows to linear convergence and
-///   may stop on the step limit or a singular `J`.
-///
-/// Runnable example: [`iterate`](super::iterate) with [`Iteration::Newton`](super::Iteration::Newton).
+/// The [`Iteration::Newton`](super::Iteration::Newton) iteration (its docs hold the formula).
 pub(super) fn run(s: &Setup, start: [f64; 2]) -> Outcome {
     let [mut u, mut v] = start;
     let mut t = s.project(frame(s.patch, u, v).0);
@@ -39,13 +26,7 @@ pub(super) fn run(s: &Setup, start: [f64; 2]) -> Outcome {
 /// One update `X ← X + ΔX` of Newton or Halley: `Err` with the outcome when
 /// the step is not finite, converged (`|ΔX|₂ < δ`) or stopped by the domain
 /// rule, else the next `(u, v)` and `t`.
-pub(super) fn advance(
-    s: &Setup,
-    uv: [f64; 2],
-    t: f64,
-    dx: DVec3,
-    k: usize,
-) -> Result<([f64; 2], f64), Outcome> {
+pub(super) fn advance(s: &Setup, uv: [f64; 2], t: f64, dx: DVec3, k: usize) -> Result<([f64; 2], f64), Outcome> {
     if !dx.is_finite() {
         return Err(Outcome::failed(Failure::NonFinite, k));
     }

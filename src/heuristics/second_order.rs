@@ -4,8 +4,8 @@
 
 use super::first_order::advance_uv;
 use super::iteration::{Failure, Outcome, Setup};
-use super::linalg::{project2, SINGULAR};
 use super::jet::{jet, Jet};
+use super::linalg::{above, project2, SINGULAR};
 use glam::DVec3;
 
 /// Below this `sin θ = |N_A × N_B|` the plane through the ray and the point
@@ -13,51 +13,7 @@ use glam::DVec3;
 /// vector grows like `1/sin²θ` (Eq. (30)), so below `√ε` it is rounding.
 const TANGENT_PLANES: f64 = 1.4901161193847656e-8; // 2⁻²⁶ = √ε
 
-/// The second-order geometric iteration for the hit of the ray `o + t·d`
-/// with `S(u, v)`.
-///
-/// * **Formula** (Eqs. (25)–(35)). At `P = S(u, v)` let plane A hold the ray
-///   and `P`, with unit normal `N_A = (P − o) × d / |(P − o) × d|`, and
-///   `N_B = S_u × S_v / |S_u × S_v|` (Eq. (28)). Their section `c` has the
-///   unit tangent `T = N_A × N_B / |N_A × N_B|` (Eq. (27)) and, to second
-///   order, `c(λ) ≈ P + λT + ½λ²K` (Eq. (26)) with the curvature vector
-///   `K = κ n = κ_B (N_B − cos θ N_A) / (1 − cos²θ)`, `cos θ = N_A·N_B`
-///   (Eq. (30); the PDF text reads "κ_B(1 − cos²θ)", a lost fraction: `K`
-///   lies in plane A, so `K·N_A = 0`, and Meusnier's theorem gives
-///   `K·N_B = κ_B`, which fixes the division). `κ_B = L u′² + 2M u′v′ + N v′²`
-///   (Eq. (31), `L = S_uu·N_B`, `M = S_uv·N_B`, `N = S_vv·N_B`) with
-///   `(u′, v′)` from `T = S_u u′ + S_v v′` by the normal equations
-///   (Eq. (32)). Writing `m = N_A × T` (the unit normal of `c` in plane A:
-///   this keeps a straight section, `K = 0`, well defined) and `k = K·m`,
-///   the dot products of `P + ΔλT + ½Δλ²K = o + d t` (Eq. (33)) with `T`
-///   and `m` (Eqs. (34)–(35)) are
-///   `Δλ − (d·T) t = (o − P)·T` and `½kΔλ² − (d·m) t = (o − P)·m`;
-///   eliminating `t` (multiplied through by `d·T`, so `d·T = 0` needs no
-///   division) leaves
-///   `½k(d·T) Δλ² − (d·m) Δλ + (d·m)(o − P)·T − (d·T)(o − P)·m = 0`.
-///   Of its roots `Δλ₁, Δλ₂`, with points `q₁, q₂` on the ray, the one on
-///   the origin's side of the plane through `q_mid = (q₁ + q₂)/2`
-///   perpendicular to `d` is taken (the paper's selection: the nearer
-///   one). Then `(Δu, Δv) = (u′, v′)Δλ`, until `(Δu² + Δv²)^{1/2} < δ`; a
-///   step out of the domain is cut where the segment leaves it (the
-///   paper's rule, [`DomainRule::Clip`](super::DomainRule::Clip)).
-/// * **Choices where the paper is silent.** A negative discriminant (the
-///   parabola misses the ray) takes the vertex `Δλ = −b/2a`, the point of
-///   the parabola nearest the ray's line; a ray through `P` takes no step.
-/// * **Special cases** (the Discussion). Case 1, the ray parallel to the
-///   tangent plane: `d·m = 0`, the equation is `½k(d·T)Δλ² = …`, solved as
-///   any other (if also `k = 0`: [`Failure::ParallelTangentPlane`]). Case
-///   2, a tangential hit: `d·m` and `(o − P)·m` tend to 0 together and the
-///   steps to 0. Case 3, `N_A ∥ N_B` (`sin θ ≤ 2⁻²⁶`, no tangent): `P` is
-///   projected on the ray, `q = o + ((P − o)·d/|d|²) d`, and `(Δu, Δv)`
-///   moves towards it as in Eq. (24) (or [`Failure::ZeroTangent`] when
-///   [`IterOptions::zero_tangent_projection`](super::IterOptions::zero_tangent_projection)
-///   is off).
-/// * **Rounding.** `f64`; the end point is a claim, its `t` the projection
-///   of `S(u, v)` on the ray. `S_u ∥ S_v` within rounding:
-///   [`Failure::SingularJacobian`].
-///
-/// Runnable example: [`iterate`](super::iterate) with [`Iteration::SecondOrder`](super::Iteration::SecondOrder).
+/// The [`Iteration::SecondOrder`](super::Iteration::SecondOrder) iteration (its docs hold the formula).
 pub(super) fn run(s: &Setup, start: [f64; 2]) -> Outcome {
     let mut uv = start;
     for k in 1..=s.opts.max_iterations {
@@ -128,19 +84,19 @@ enum Local {
 /// Plane A and the section it cuts (Eqs. (27)–(32)).
 fn osculate(s: &Setup, j: &Jet) -> Result<Local, Failure> {
     let nb = j.su.cross(j.sv);
-    if !(nb.length() > SINGULAR * j.su.length() * j.sv.length()) {
+    if !above(nb.length(), SINGULAR * j.su.length() * j.sv.length()) {
         return Err(Failure::SingularJacobian);
     }
     let nb = nb.normalize();
     let w = j.s - s.o;
     let na = w.cross(s.d);
-    if !(na.length() > SINGULAR * w.length() * s.d.length()) {
+    if !above(na.length(), SINGULAR * w.length() * s.d.length()) {
         return Ok(Local::OnRay);
     }
     let na = na.normalize();
     let tn = na.cross(nb);
     let sin = tn.length();
-    if !(sin > TANGENT_PLANES) {
+    if !above(sin, TANGENT_PLANES) {
         return Ok(Local::TangentPlanes);
     }
     let tan = tn / sin;
@@ -251,13 +207,19 @@ mod tests {
         let s = Setup::new(&ex.patch, &ray, &opts);
         for uv in [[0.3, 0.6], [0.1, 0.5], [0.9, 0.5]] {
             let j = jet(&ex.patch, uv[0], uv[1]);
-            let Ok(Local::Section(c)) = osculate(&s, &j) else { panic!("a transversal section at {uv:?}") };
+            let Ok(Local::Section(c)) = osculate(&s, &j) else {
+                panic!("a transversal section at {uv:?}")
+            };
             let sin = c.na.cross(j.su.cross(j.sv).normalize()).length();
             assert!(sin < 0.5, "θ should be oblique at {uv:?}: sin θ = {sin}");
-            let err = |l: f64| (section_point(&s, j.s, &c, uv, l) - (j.s + l * c.tan + 0.5 * l * l * c.curvature)).length();
+            let err =
+                |l: f64| (section_point(&s, j.s, &c, uv, l) - (j.s + l * c.tan + 0.5 * l * l * c.curvature)).length();
             for l in [0.02, -0.02] {
                 let (e1, e2) = (err(l), err(l / 2.0));
-                assert!(e1 < 1e-3 && e1 / e2 > 6.0, "at {uv:?}, λ = {l}: errors {e1:e}, {e2:e} (third order halves to 1/8)");
+                assert!(
+                    e1 < 1e-3 && e1 / e2 > 6.0,
+                    "at {uv:?}, λ = {l}: errors {e1:e}, {e2:e} (third order halves to 1/8)"
+                );
             }
         }
     }
