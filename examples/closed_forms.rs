@@ -11,33 +11,26 @@ mod cases;
 mod oracle;
 #[path = "closed_forms/picture.rs"]
 mod picture;
+#[path = "closed_forms/report.rs"]
+mod report;
 #[path = "closed_forms/tally.rs"]
 mod tally;
 
 use cases::{Family, Quad, Seg, Swept};
 use oracle::Referee;
+use report::{Report, Row, Sweeps};
 use rootclip::heuristics::{
     ray_quadratic_bezier_2d, ray_segment_2d, ray_swept_quadratic_patch_3d, ClosedForm, FormulaFailure,
 };
 use rootclip::internals::Rng;
-use std::fmt::Write as _;
 use std::hint::black_box;
 use std::time::Instant;
-use tally::{Claim, Tally, TOL};
+use tally::{Claim, Tally};
 
 const SEED: u64 = 0x5eed_0003_2008;
 /// Queries per family (random families get four times as many).
 const N: usize = 400;
 const DIR: &str = "papers/ray-intersections-2008";
-
-/// One measured family: the tally and the time per query.
-struct Row {
-    name: String,
-    tally: Tally,
-    failures: Vec<(FormulaFailure, usize)>,
-    cf_ns: f64,
-    oracle_us: f64,
-}
 
 /// Seconds per call of `f` over `cases`, repeated until the run is long
 /// enough to time.
@@ -117,8 +110,12 @@ fn swept_form(c: &Swept) -> ClosedForm<rootclip::heuristics::PatchHit> {
     ray_swept_quadratic_patch_3d(c.o, c.d, c.p, c.e).expect("valid input")
 }
 
+fn refs(rows: &[Row]) -> Vec<&Row> {
+    rows.iter().collect()
+}
+
 fn swept_referee(c: &Swept) -> Referee {
-    oracle::swept_3d(c.o, c.d, &oracle::swept_patch(c.p, c.e))
+    oracle::swept(c.o, c.d, c.p, c.e)
 }
 
 fn curve_claim(h: &rootclip::heuristics::CurveHit) -> Claim {
@@ -127,59 +124,6 @@ fn curve_claim(h: &rootclip::heuristics::CurveHit) -> Claim {
 
 fn patch_claim(h: &rootclip::heuristics::PatchHit) -> Claim {
     Claim { t: h.t, u: Some(h.u) }
-}
-
-fn sci(x: f64) -> String {
-    if x == 0.0 {
-        "0".into()
-    } else {
-        format!("{x:.0e}")
-    }
-}
-
-fn table(out: &mut String, rows: &[Row]) {
-    out.push_str(
-        "| family | queries | certified hits | undecided regions | closed-form hits | lost | invented | misplaced | \
-in undecided | failed (hits there) | worst matched \\|Δ\\| | closed form | referee |\n\
-|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n",
-    );
-    for r in rows {
-        let t = &r.tally;
-        let failed = if t.failed == 0 {
-            "0".to_string()
-        } else {
-            let why: Vec<String> = r.failures.iter().map(|(f, k)| format!("{k} {}", f.code())).collect();
-            format!("{} ({}): {}", t.failed, t.failed_hits, why.join(", "))
-        };
-        let mut undecided = t.oracle_open.to_string();
-        if t.oracle_degenerate > 0 {
-            let _ = write!(undecided, " (+{} degenerate)", t.oracle_degenerate);
-        }
-        if t.oracle_incomplete > 0 {
-            let _ = write!(undecided, " ({} incomplete)", t.oracle_incomplete);
-        }
-        let _ = writeln!(
-            out,
-            "| {} | {} | {} | {} | {} | **{}** | **{}** | **{}** | {} | {} | {} | {:.0} ns | {:.1} µs |",
-            r.name,
-            t.queries,
-            t.oracle_hits,
-            undecided,
-            t.cf_hits,
-            t.lost,
-            t.invented,
-            t.misplaced,
-            t.in_open,
-            failed,
-            sci(t.worst),
-            r.cf_ns,
-            r.oracle_us
-        );
-    }
-}
-
-fn find<'a>(rows: &'a [Row], prefix: &str) -> &'a Tally {
-    &rows.iter().find(|r| r.name.starts_with(prefix)).expect("family").tally
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -220,7 +164,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     // Segment, 2D.
     let mut seg_fams = vec![cases::seg_random(&mut rng, 4 * N)];
-    for angle in [1e-4, 1e-8, 1e-12, 1e-14, 1e-15, 1e-16] {
+    let angles = [1e-4, 1e-8, 1e-12, 1e-14, 1e-15, 1e-16];
+    for angle in angles {
         seg_fams.push(cases::seg_near_parallel(&mut rng, N, angle));
     }
     seg_fams.push(cases::seg_aimed_end(&mut rng, N));
@@ -234,8 +179,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     // Swept quadratic patch, 3D.
     let mut swept_fams = vec![cases::swept_random(&mut rng, 4 * N)];
+    let swept_heights = [1e-8, 1e-12, 1e-14, 1e-15];
     for inside in [true, false] {
-        for h in [1e-8, 1e-12, 1e-14, 1e-15] {
+        for h in swept_heights {
             swept_fams.push(cases::swept_grazing(&mut rng, N, h, inside));
         }
     }
@@ -250,16 +196,70 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         swept_rows.push(measure(fam, swept_form, patch_claim, swept_referee).0);
     }
 
-    let mut out = String::new();
-    write_report(
-        &mut out,
-        &quad_rows,
-        &seg_rows,
-        &swept_rows,
-        figure.as_ref().map(|f| f.2.as_str()),
+    let (nh, na, ns) = (heights.len(), angles.len(), swept_heights.len());
+    let sweeps = Sweeps {
+        heights: &heights,
+        quad_inside: refs(&quad_rows[1..1 + nh]),
+        quad_outside: refs(&quad_rows[1 + nh..1 + 2 * nh]),
+        angles: &angles,
+        seg_angle: refs(&seg_rows[1..1 + na]),
+        swept_heights: &swept_heights,
+        swept_inside: refs(&swept_rows[1..1 + ns]),
+        swept_outside: refs(&swept_rows[1 + ns..1 + 2 * ns]),
+    };
+    let series = |label: &str, color, dash, rows: &[&Row], xs: &[f64]| {
+        let pts = rows.iter().zip(xs).map(|(r, x)| (*x, r.wrong_share())).collect();
+        (label.to_string(), color, dash, pts)
+    };
+    let rates = picture::rates_svg(
+        "Queries answered wrongly near tangency",
+        "grazing distance h, or angle α (log scale)",
+        &[
+            series(
+                "quadratic, grazing inside",
+                "#1f77b4",
+                "",
+                &sweeps.quad_inside,
+                &heights,
+            ),
+            series(
+                "quadratic, grazing outside",
+                "#1f77b4",
+                "5 3",
+                &sweeps.quad_outside,
+                &heights,
+            ),
+            series(
+                "swept, inside in plan",
+                "#2ca02c",
+                "",
+                &sweeps.swept_inside,
+                &swept_heights,
+            ),
+            series(
+                "swept, outside in plan",
+                "#2ca02c",
+                "5 3",
+                &sweeps.swept_outside,
+                &swept_heights,
+            ),
+            series("segment, at angle α", "#d62728", "", &sweeps.seg_angle, &angles),
+        ],
     );
+    let mut out = String::new();
+    Report {
+        provenance: provenance(),
+        n: N,
+        quad: &quad_rows,
+        seg: &seg_rows,
+        swept: &swept_rows,
+        sweeps,
+        figure: figure.as_ref().map(|f| f.2.clone()),
+    }
+    .write(&mut out);
     std::fs::create_dir_all(DIR)?;
     std::fs::write(format!("{DIR}/README.md"), &out)?;
+    std::fs::write(format!("{DIR}/rates.svg"), rates)?;
     if let Some((c, roots, name)) = &figure {
         let h: f64 = name
             .split_whitespace()
@@ -272,24 +272,35 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     Ok(())
 }
 
-fn write_report(out: &mut String, quad: &[Row], seg: &[Row], swept: &[Row], figure: Option<&str>) {
-    let _ = writeln!(
-        out,
-        "# Ray intersections (Christensen 2008): the closed forms, refereed\n"
-    );
-    let _ = writeln!(
-        out,
-        "Generated by `cargo run --release --example closed_forms` (seed {SEED:#x}); every number below is \
-computed by that program — only the timings change from run to run.\n"
-    );
-    out.push_str("## Quadratic Bézier curve (§1.2, Eq. (9), the quadratic formula)\n\n");
-    table(out, quad);
-    out.push_str("\n## Line segment (§1.1)\n\n");
-    table(out, seg);
-    out.push_str("\n## Swept quadratic Bézier patch (§2.1, Eq. (11))\n\n");
-    table(out, swept);
-    if let Some(name) = figure {
-        let _ = writeln!(out, "\n![grazing](grazing.svg)\n\n{name}");
-    }
-    let _ = (find(quad, "random"), TOL);
+/// The machine and the commit the numbers come from.
+fn provenance() -> String {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            let l = s.lines().find(|l| l.starts_with("model name"))?;
+            Some(l.split(':').nth(1)?.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown CPU".into());
+    let threads = std::thread::available_parallelism().map_or(0, |n| n.get());
+    let git = |args: &[&str]| {
+        let o = std::process::Command::new("git").args(args).output().ok()?;
+        o.status
+            .success()
+            .then(|| String::from_utf8_lossy(&o.stdout).trim().to_string())
+    };
+    let commit = match git(&["rev-parse", "--short", "HEAD"]) {
+        None => "rootclip (commit unknown)".to_string(),
+        Some(h) => {
+            let dirty = git(&["status", "--porcelain", "--", "src"]).is_some_and(|s| !s.is_empty());
+            format!(
+                "rootclip at commit `{h}`{}",
+                if dirty {
+                    " with uncommitted changes in `src/`"
+                } else {
+                    ""
+                }
+            )
+        }
+    };
+    format!("{cpu}, {threads} hardware threads shared with other jobs, {commit}")
 }

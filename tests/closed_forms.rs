@@ -133,3 +133,44 @@ fn the_2d_and_3d_referees_agree() {
     let cf = ray_swept_quadratic_patch_3d(DVec3::new(0.0, 0.0, -1.0), DVec3::Z, p, 1.0).unwrap();
     assert!(cf.failure().is_some());
 }
+
+#[test]
+fn the_reduction_to_2d_agrees_with_the_tensor_referee_and_decides_what_it_leaves() {
+    let mut rng = Rng(19);
+    // Where the tensor-patch referee decides everything, the exact
+    // reduction finds the same hits, at the same (t, u).
+    for c in cases::swept_random(&mut rng, 80).cases {
+        let r3 = oracle::swept_3d(c.o, c.d, &oracle::swept_patch(c.p, c.e));
+        let red = oracle::swept_reduced(c.o, c.d, &c.p, c.e).expect("decided");
+        assert!(r3.complete && r3.open.is_empty());
+        assert_eq!(r3.hits.len(), red.hits.len(), "{c:?}");
+        for h in &red.hits {
+            let (t, u) = (0.5 * (h.t[0] + h.t[1]), h.u.map(|u| 0.5 * (u[0] + u[1])).unwrap());
+            assert!(r3.hits.iter().any(|k| {
+                let ku = k.u.unwrap();
+                (k.t[0] - 1e-9..=k.t[1] + 1e-9).contains(&t) && (ku[0] - 1e-9..=ku[1] + 1e-9).contains(&u)
+            }));
+        }
+    }
+    // A grazing ray in plan the tensor referee leaves undecided: decided,
+    // both hits certified, and the closed form agrees.
+    let fam = cases::swept_grazing(&mut rng, 20, 1e-15, true);
+    let mut t = Tally::default();
+    for c in &fam.cases {
+        let r = oracle::swept(c.o, c.d, c.p, c.e);
+        let cf = ray_swept_quadratic_patch_3d(c.o, c.d, c.p, c.e).unwrap();
+        let claims: Vec<Claim> = cf.hits().iter().map(|h| Claim { t: h.t, u: Some(h.u) }).collect();
+        t.add(Some(&claims), &r);
+    }
+    assert!(agrees(&t) && t.oracle_hits == 40 && t.oracle_reduced > 0, "{t:?}");
+    // Nearly along the sweep (ε = 1e-12): t right, u wrong by ~1e-4.
+    let mut t = Tally::default();
+    for c in cases::swept_near_vertical(&mut rng, 20, 1e-12).cases {
+        let r = oracle::swept(c.o, c.d, c.p, c.e);
+        let cf = ray_swept_quadratic_patch_3d(c.o, c.d, c.p, c.e).unwrap();
+        let claims: Vec<Claim> = cf.hits().iter().map(|h| Claim { t: h.t, u: Some(h.u) }).collect();
+        t.add(Some(&claims), &r);
+    }
+    assert_eq!(t.oracle_hits, 20, "{t:?}");
+    assert!(t.misplaced > 10 && t.worst_misplaced > 1e-6, "{t:?}");
+}

@@ -12,7 +12,11 @@
 //! * 3D, ray against the swept patch: [`intersect`] on the tensor patch of
 //!   bidegree `(2, 1)` with control points `(p_i, 0)` and `(p_i, e)`, whose
 //!   `(u, v)` are the paper's `(t, u)` and whose ray parameter is the paper's
-//!   `s`.
+//!   `s`. Where that leaves a region undecided (grazing rays, rays nearly
+//!   along the sweep), [`swept_reduced`] decides it by the exact reduction
+//!   to 2D: the first two components of `p(t, u) = o + s d` are the 2D
+//!   problem of the projected ray, and `u = (o_z + d_z s)/e ∈ [0, 1]` is
+//!   one more exact sign at the root.
 
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
@@ -57,6 +61,9 @@ pub struct Referee {
     /// The ray runs along the curve (2D: `f ≡ 0`) or along the patch (3D: a
     /// curve of hits): no finite list exists.
     pub degenerate: bool,
+    /// 3D: the tensor-patch referee left something undecided and the exact
+    /// reduction to 2D decided every hit instead.
+    pub reduced: bool,
 }
 
 fn q(x: f64) -> Q {
@@ -255,7 +262,103 @@ pub fn swept_patch(p: [DVec2; 3], e: f64) -> Patch {
     Patch::from(TensorPatch::new(2, 1, pts, None).expect("a finite net"))
 }
 
-/// The referee for a 3D ray against the swept patch (see the module docs).
+/// The referee for a 3D ray against the swept patch `p`, `e` (see the module
+/// docs): [`swept_3d`], and where it leaves anything undecided,
+/// [`swept_reduced`] if that decides every hit.
+pub fn swept(o: DVec3, d: DVec3, p: [DVec2; 3], e: f64) -> Referee {
+    let r = swept_3d(o, d, &swept_patch(p, e));
+    if r.complete && r.open.is_empty() && !r.degenerate {
+        return r;
+    }
+    swept_reduced(o, d, &p, e).unwrap_or(r)
+}
+
+/// The swept-patch referee by the exact reduction to 2D, for `e > 0`:
+/// the roots `t` of `f(t) = n·(b(t) − o_xy)` (`n ⟂ d_xy`) isolated by
+/// [`solve_uni`] on exact coefficients, and at each simple root three exact
+/// signs, with `g(t) = d_xy·(b(t) − o_xy) = s |d_xy|²` there:
+/// `s ≥ 0 ⇔ g ≥ 0`, `u ≥ 0 ⇔ o_z |d_xy|² + d_z g ≥ 0` and
+/// `u ≤ 1 ⇔ (e − o_z) |d_xy|² − d_z g ≥ 0`. `None` unless every root is
+/// simple and every sign decided (a tangency in plan, `d_xy = 0`, `e ≤ 0`).
+pub fn swept_reduced(o: DVec3, d: DVec3, p: &[DVec2; 3], e: f64) -> Option<Referee> {
+    let (o2, d2) = (o.truncate(), d.truncate());
+    if d2 == DVec2::ZERO || e <= 0.0 {
+        return None;
+    }
+    let (dx, dy) = (q(d2.x), q(d2.y));
+    let f = dot_coeffs([-dy.clone(), dx.clone()], o2, p);
+    if f.iter().all(Zero::is_zero) {
+        return None;
+    }
+    let g = dot_coeffs([dx.clone(), dy.clone()], o2, p);
+    let sol = solve_uni(&UniBezier::on_unit(f.clone()).ok()?, &UniOptions::default()).ok()?;
+    if !sol.complete || !sol.clusters.is_empty() || !sol.leftovers.is_empty() {
+        return None;
+    }
+    let dd = &dx * &dx + &dy * &dy;
+    let (oz, dz, eq) = (q(o.z), q(d.z), q(e));
+    let above: Vec<Q> = g.iter().map(|gi| &oz * &dd + &dz * gi).collect();
+    let below: Vec<Q> = g.iter().map(|gi| (&eq - &oz) * &dd - &dz * gi).collect();
+    let mut out = Referee {
+        complete: true,
+        reduced: true,
+        ..Referee::default()
+    };
+    for r in &sol.roots {
+        let on = sign_at_root(&f, &g, r.interval)?
+            && sign_at_root(&f, &above, r.interval)?
+            && sign_at_root(&f, &below, r.interval)?;
+        if on {
+            let (t, u) = narrow_t_and_u(&f, &above, &dd, &eq, r.interval);
+            out.hits.push(Proven { t, u: Some(u) });
+        }
+    }
+    Some(out)
+}
+
+/// Bisects the simple root of `f` in `t` exactly (rational midpoints,
+/// below the float resolution if need be) until
+/// `u = (o_z |d|² + d_z g) / (|d|² e)` — `above / (dd e)` — is enclosed to
+/// `1e-13` (by the hull of its exact BB coefficients on the piece), and
+/// returns both ranges. A nearly vertical ray makes `u` far more sensitive
+/// to `t` than `t` itself (`du/dt ≈ 1/ε`).
+fn narrow_t_and_u(f: &[Q], above: &[Q], dd: &Q, e: &Q, t: [f64; 2]) -> ([f64; 2], [f64; 2]) {
+    let scale = dd * e;
+    let u_of = |lo: &Q, hi: &Q| {
+        let c = restrict(above, lo, hi);
+        let min = c.iter().min().expect("three coefficients") / &scale;
+        let max = c.iter().max().expect("three coefficients") / &scale;
+        [rational_to_interval(&min).inf(), rational_to_interval(&max).sup()]
+    };
+    let t_of = |lo: &Q, hi: &Q| [rational_to_interval(lo).inf(), rational_to_interval(hi).sup()];
+    let (mut lo, mut hi) = (q(t[0]), q(t[1]));
+    let f_lo = eval(f, &lo);
+    for x in [&lo, &hi] {
+        if eval(f, x).is_zero() {
+            return (t_of(x, x), u_of(x, x));
+        }
+    }
+    for _ in 0..200 {
+        let u = u_of(&lo, &hi);
+        if u[1] - u[0] <= 1e-13 {
+            return (t_of(&lo, &hi), u);
+        }
+        let mid = (&lo + &hi) / Q::from_integer(2.into());
+        let fm = eval(f, &mid);
+        if fm.is_zero() {
+            return (t_of(&mid, &mid), u_of(&mid, &mid));
+        }
+        if fm.is_positive() == f_lo.is_positive() {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    (t_of(&lo, &hi), u_of(&lo, &hi))
+}
+
+/// The referee for a 3D ray against the swept patch as a tensor patch, by
+/// [`intersect`] alone.
 pub fn swept_3d(o: DVec3, d: DVec3, patch: &Patch) -> Referee {
     let ray = Ray::new(o, d).expect("non-zero direction");
     let outcome = intersect(patch, &ray, &RayOptions::default()).expect("valid options");

@@ -1,6 +1,7 @@
-//! The SVG figure of one grazing ray where the quadratic formula loses both
-//! hits: the curve and the ray, and `f(t) = n·(b(t) − o)` near the tangency,
-//! exactly (rationals) and as the paper's float `A t² + B t + C`.
+//! The SVG figures: one grazing ray where the quadratic formula loses both
+//! hits (the curve and the ray, and `f(t) = n·(b(t) − o)` near the
+//! tangency, exactly and as the paper's float `A t² + B t + C`), and the
+//! share of wrong answers against the grazing distance or angle.
 
 use super::cases::{bez, Quad};
 use num_rational::BigRational;
@@ -167,6 +168,97 @@ height=\"{hgt}\" viewBox=\"0 0 {w} {hgt}\" font-family=\"sans-serif\" font-size=
         py0 + ph + 42.0,
         rational_to_f64(&de)
     );
+    s.push_str("</svg>\n");
+    s
+}
+
+/// One line of [`rates_svg`]: a label, a colour, a dash pattern (empty for
+/// solid) and its points `(x, share)`, `x > 0`.
+pub type Series = (String, &'static str, &'static str, Vec<(f64, f64)>);
+
+/// Shares in `[0, 1]` against a logarithmic `x` axis running from `x_max`
+/// on the left to `x_min` on the right (nearer to tangency going right).
+pub fn rates_svg(title: &str, x_label: &str, series: &[Series]) -> String {
+    let (w, h) = (720.0, 400.0);
+    let (x0, y0, pw, ph) = (70.0, 40.0, 400.0, 300.0);
+    let xs = series.iter().flat_map(|s| s.3.iter().map(|p| p.0.log10()));
+    let (lo, hi) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
+    let (lo, hi) = (lo.floor(), hi.ceil());
+    let fx = |x: f64| x0 + (hi - x.log10()) / (hi - lo).max(1.0) * pw;
+    let fy = |y: f64| y0 + ph - y * ph;
+    let mut s = format!(
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" \
+height=\"{h}\" viewBox=\"0 0 {w} {h}\" font-family=\"sans-serif\" font-size=\"12\">\n\
+<rect width=\"{w}\" height=\"{h}\" fill=\"white\"/>\n\
+<text x=\"{:.0}\" y=\"24\" text-anchor=\"middle\" font-size=\"13\">{title}</text>\n\
+<rect x=\"{x0}\" y=\"{y0}\" width=\"{pw}\" height=\"{ph}\" fill=\"none\" stroke=\"black\"/>\n",
+        x0 + pw / 2.0
+    );
+    for k in 0..=4 {
+        let y = k as f64 / 4.0;
+        let _ = writeln!(
+            s,
+            "<line x1=\"{x0}\" y1=\"{0:.1}\" x2=\"{1}\" y2=\"{0:.1}\" stroke=\"#ddd\"/>\
+<text x=\"{2}\" y=\"{3:.1}\" text-anchor=\"end\">{4:.0}%</text>",
+            fy(y),
+            x0 + pw,
+            x0 - 6.0,
+            fy(y) + 4.0,
+            100.0 * y
+        );
+    }
+    let mut e = hi as i32;
+    while e >= lo as i32 {
+        let x = fx(10f64.powi(e));
+        let _ = writeln!(
+            s,
+            "<line x1=\"{x:.1}\" y1=\"{y0}\" x2=\"{x:.1}\" y2=\"{0}\" stroke=\"#eee\"/>\
+<text x=\"{x:.1}\" y=\"{1}\" text-anchor=\"middle\">1e{e}</text>",
+            y0 + ph,
+            y0 + ph + 16.0
+        );
+        e -= 2;
+    }
+    let _ = writeln!(
+        s,
+        "<text x=\"{:.0}\" y=\"{:.0}\" text-anchor=\"middle\">{x_label}</text>\n\
+<text x=\"18\" y=\"{:.0}\" transform=\"rotate(-90 18 {:.0})\" text-anchor=\"middle\">queries answered wrongly</text>",
+        x0 + pw / 2.0,
+        y0 + ph + 36.0,
+        y0 + ph / 2.0,
+        y0 + ph / 2.0
+    );
+    for (k, (label, color, dash, pts)) in series.iter().enumerate() {
+        let dash = if dash.is_empty() {
+            String::new()
+        } else {
+            format!(" stroke-dasharray=\"{dash}\"")
+        };
+        let line: Vec<String> = pts.iter().map(|&(x, y)| format!("{:.1},{:.1}", fx(x), fy(y))).collect();
+        let _ = writeln!(
+            s,
+            "<polyline points=\"{}\" fill=\"none\" stroke=\"{color}\" stroke-width=\"2\"{dash}/>",
+            line.join(" ")
+        );
+        for &(x, y) in pts {
+            let _ = writeln!(
+                s,
+                "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"3\" fill=\"{color}\"/>",
+                fx(x),
+                fy(y)
+            );
+        }
+        let ly = y0 + 10.0 + 22.0 * k as f64;
+        let _ = writeln!(
+            s,
+            "<line x1=\"{0:.0}\" y1=\"{ly:.0}\" x2=\"{1:.0}\" y2=\"{ly:.0}\" stroke=\"{color}\" stroke-width=\"2\"{dash}/>\
+<text x=\"{2:.0}\" y=\"{3:.0}\">{label}</text>",
+            x0 + pw + 16.0,
+            x0 + pw + 44.0,
+            x0 + pw + 50.0,
+            ly + 4.0
+        );
+    }
     s.push_str("</svg>\n");
     s
 }

@@ -42,6 +42,12 @@ pub struct Tally {
     pub misplaced: usize,
     /// Closed-form hits within [`TOL`] of an undecided region only.
     pub in_open: usize,
+    /// Undecided regions with no closed-form hit within [`TOL`] (at an
+    /// exact tangency: the formula reports no hit at all).
+    pub open_unclaimed: usize,
+    /// 3D: queries the exact reduction to 2D decided (the tensor-patch
+    /// referee left them undecided).
+    pub oracle_reduced: usize,
     /// Queries where the formula failed (divided by zero, overflowed).
     pub failed: usize,
     /// Certified hits of those queries.
@@ -51,6 +57,9 @@ pub struct Tally {
     /// The largest distance of a matched closed-form hit from its certified
     /// interval.
     pub worst: f64,
+    /// The largest distance of a misplaced hit (an unmatched closed-form
+    /// hit) from the nearest unmatched certified hit of its query.
+    pub worst_misplaced: f64,
 }
 
 fn gap(x: f64, iv: [f64; 2]) -> f64 {
@@ -76,13 +85,20 @@ impl Tally {
             return;
         }
         self.oracle_hits += referee.hits.len();
+        self.oracle_reduced += usize::from(referee.reduced);
         self.oracle_incomplete += usize::from(!referee.complete);
         self.oracle_open += referee.open.len();
         let Some(claims) = claims else {
             self.failed += 1;
             self.failed_hits += referee.hits.len();
+            self.open_unclaimed += referee.open.len();
             return;
         };
+        self.open_unclaimed += referee
+            .open
+            .iter()
+            .filter(|o| !claims.iter().any(|c| distance(c, o.t, o.u) <= TOL))
+            .count();
         self.cf_hits += claims.len();
         let mut pairs: Vec<(f64, usize, usize)> = Vec::new();
         for (i, c) in claims.iter().enumerate() {
@@ -112,6 +128,16 @@ impl Tally {
                 self.in_open += 1;
             } else {
                 invented += 1;
+                let nearest = referee
+                    .hits
+                    .iter()
+                    .zip(&hit_used)
+                    .filter(|(_, used)| !**used)
+                    .map(|(h, _)| distance(c, h.t, h.u))
+                    .fold(f64::INFINITY, f64::min);
+                if nearest.is_finite() {
+                    self.worst_misplaced = self.worst_misplaced.max(nearest);
+                }
             }
         }
         let misplaced = lost.min(invented);

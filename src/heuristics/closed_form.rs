@@ -149,7 +149,11 @@ fn nonzero_dir(d: DVec2) -> Result<()> {
 /// and the hit is kept when `t ∈ [0, 1]` and `s ≥ 0`. Note the paper's
 /// orientation: `t = 1` at `a`, `t = 0` at `b`.
 ///
-/// Rounded: plain `f64` in the paper's order; no error bound. Degenerate:
+/// Rounded: plain `f64` in the paper's order; no error bound. The
+/// denominator is `|d| |a − b| sin α` for a ray at angle `α` to the segment
+/// and cancels: `t` carries a relative error of order `ε/α` (a hit found but
+/// misplaced from `α ≈ 1e-12` on), and a hit within rounding of `t = 0`,
+/// `t = 1` or `s = 0` may be dropped or kept wrongly. Degenerate:
 /// a zero denominator ([`FormulaFailure::Parallel`]), a non-finite quotient
 /// ([`FormulaFailure::NotFinite`]). Errors: NaN or infinite input
 /// ([`Error::NonFinite`]), `d = 0` or `a = b` ([`Error::Degenerate`]).
@@ -252,10 +256,12 @@ fn quadratic_hits(o: DVec2, d: DVec2, p: [DVec2; 3]) -> std::result::Result<Vec<
 /// with `b_x(t)` evaluated in the power form (6). Roots with `t ∉ [0, 1]`
 /// or `s < 0` are dropped; a zero discriminant gives one hit.
 ///
-/// Rounded: plain `f64`; `B² − 4AC` cancels for a grazing ray and
-/// `−B ± √…` for a small root, so hits near a tangency are lost or
-/// invented and small roots lose digits — which is what
-/// `papers/ray-intersections-2008/` measures. Degenerate: `A = 0`
+/// Rounded: plain `f64`; `B² − 4AC` cancels for a grazing ray (at distance
+/// `h`, the roots move by about `ε/√h`, and at `h ≲ ε` two hits become none
+/// or none two) and `−B ± √…` for a small root (a hit within `ε` of `t = 0`
+/// comes out as exactly `t = 0` and is kept even when it lies outside); the
+/// range tests on rounded `t` and `s` decide hits within rounding of an end
+/// either way — which is what `papers/ray-intersections-2008/` measures. Degenerate: `A = 0`
 /// ([`FormulaFailure::LeadingZero`]: the paper has no linear case), a
 /// non-finite root or `s` ([`FormulaFailure::NotFinite`]). Errors: NaN or
 /// infinite input ([`Error::NonFinite`]), `d = 0` ([`Error::Degenerate`]).
@@ -296,7 +302,10 @@ pub fn ray_quadratic_bezier_2d(o: DVec2, d: DVec2, p: [DVec2; 3]) -> Result<Clos
 /// order: `t`, then `s`, then `u`). The patch is the tensor patch of bidegree
 /// `(2, 1)` with control points `(p_i, 0)` and `(p_i, e)`.
 ///
-/// Rounded as [`ray_quadratic_bezier_2d`], plus one rounding in `u`.
+/// Rounded as [`ray_quadratic_bezier_2d`], plus one rounding in `u`; for a
+/// ray nearly along the sweep, direction `(ε_d w, d_z)`, Eq. (8) or (10)
+/// divides by a component of size `ε_d`, so `s` and `u` carry errors of
+/// order `ε/ε_d` (right `t`, wrong `u`).
 /// Degenerate: `d_x = d_y = 0` ([`FormulaFailure::AlongSweep`]: the ray
 /// lies on a vertical line, which meets the patch in a segment or not at
 /// all), `A = 0`, non-finite results. Errors: NaN or infinite input
