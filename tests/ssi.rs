@@ -152,3 +152,33 @@ fn rational_cylinder_against_a_tilted_plane() {
     let ends = [br.points[0].xyz[1], br.points[br.points.len() - 1].xyz[1]];
     assert!(ends.iter().any(|y| y.abs() < 1e-9) && ends.iter().any(|y| (y - 2.0).abs() < 1e-9));
 }
+
+#[test]
+fn triangle_against_paraboloid() {
+    // The flat triangle (−1, −1, ½), (3, −1, ½), (−1, 3, ½) holds the whole
+    // circle x² + y² = ½ of z = ½ on the paraboloid: one closed loop.
+    use rootclip::ray::TriPatch;
+    let tri = TriPatch::new(
+        1,
+        vec![
+            DVec3::new(-1.0, -1.0, 0.5),
+            DVec3::new(3.0, -1.0, 0.5),
+            DVec3::new(-1.0, 3.0, 0.5),
+        ],
+        None,
+    )
+    .unwrap();
+    let (a, b) = (Patch::from(tri.clone()), paraboloid(1.0, 0.0));
+    let out = intersect_surfaces(&a, &b, &SsiOptions::default()).unwrap();
+    assert!(out.complete, "{:?}", out.singular);
+    assert_eq!(out.branches.len(), 1);
+    assert!(out.branches[0].closed);
+    for p in &out.branches[0].points {
+        assert!(p.certified);
+        let [x, y, z] = p.xyz;
+        assert!((x * x + y * y - 0.5).abs() < 1e-9 && (z - 0.5).abs() < 1e-12);
+        // The triangle's parameters: u, v ≥ 0, u + v ≤ 1, and T(u, v) is the point.
+        let q = tri.eval(p.a[0], p.a[1]);
+        assert!((q.x - x).abs() < 1e-9 && (q.y - y).abs() < 1e-9);
+    }
+}

@@ -244,7 +244,8 @@ mod tests {
         };
         let p = a.mul(&b);
         assert_eq!(p.deg, vec![2]);
-        assert!(p.c[1].lo <= 0.5 && 0.5 <= p.c[1].hi && p.c[0].hi == 0.0);
+        // Outward rounding moves an exact 0 by one subnormal.
+        assert!(p.c[1].lo <= 0.5 && 0.5 <= p.c[1].hi && p.c[0].lo <= 0.0 && p.c[0].hi < 1e-300);
         let s = a.add(&b);
         assert!(s.c.iter().all(|x| x.lo <= 1.0 && 1.0 <= x.hi));
     }

@@ -52,7 +52,11 @@
 //!   branch (a step proven nowhere, a budget). Branches listed are still
 //!   right as far as their certified points go.
 //!
-//! Triangular patches are not supported yet (an [`Error::Shape`]).
+//! A triangular patch is intersected as the tensor patch
+//! `(σ, τ) ↦ T(σ(1 − τ), στ)` (its corner `u = v = 0` the collapsed edge
+//! `σ = 0`; reported parameters are the triangle's). If that corner lies on
+//! the other patch, the collapsed edge is a curve of zeros of a boundary
+//! system and the answer is incomplete there.
 
 mod algebra;
 mod start;
@@ -60,8 +64,9 @@ mod system;
 mod trace;
 
 use crate::error::{Error, Result};
-use crate::ray::{Patch, TensorPatch};
+use crate::ray::{Patch, TensorPatch, TriPatch};
 use crate::solve::nd::NdOptions;
+use glam::DVec3;
 use system::{Box4, System};
 use trace::{End, Start, Trace, Tracer};
 
@@ -82,7 +87,7 @@ impl Default for SsiOptions {
         Self {
             tol: 1e-3,
             max_boxes: 200_000,
-            max_points: 100_000,
+            max_points: 20_000,
         }
     }
 }
@@ -186,8 +191,8 @@ pub struct Intersection {
 /// Every branch of the intersection of patches `a` and `b`, with the
 /// contract of the [module docs](self).
 ///
-/// Errors: triangular patches ([`Error::Shape`]), a `tol` that is not a
-/// positive number ([`Error::InvalidOption`]).
+/// Errors: a `tol` that is not a positive number
+/// ([`Error::InvalidOption`]).
 pub fn intersect_surfaces(a: &Patch, b: &Patch, opts: &SsiOptions) -> Result<Intersection> {
     if !(opts.tol > 0.0 && opts.tol.is_finite()) {
         return Err(Error::InvalidOption(format!(
@@ -248,11 +253,61 @@ fn pieces(p: &Patch) -> Result<Vec<(TensorPatch, ParamMap)>> {
                 (piece.patch().clone(), map)
             })
             .collect()),
-        Patch::Triangle(_) => Err(Error::Shape(
-            "surface intersection takes tensor-product and B-spline patches; triangular patches are not supported yet"
-                .into(),
-        )),
+        Patch::Triangle(t) => {
+            let map: ParamMap = Box::new(|x: [f64; 2]| [x[0] * (1.0 - x[1]), x[0] * x[1]]);
+            Ok(vec![(triangle_as_tensor(t)?, map)])
+        }
     }
+}
+
+/// A triangular patch as a tensor patch of bidegree `(n, n)` on `[0, 1]²`
+/// through `(u, v) = (σ(1 − τ), στ)`, which maps the square onto the
+/// triangle (the edge `σ = 0` collapses to the corner `u = v = 0`):
+/// `B^n_{ijk}(u, v) = B^n_{i+j}(σ) B^{i+j}_j(τ)`, the second factor raised
+/// to degree `n`, so `c_{a,l} = Σ_j b_{a−j, j} C(a, j) C(n − a, l − j) / C(n, l)`
+/// for each homogeneous coordinate, a convex combination. Computed in `f64`;
+/// the patch's enclosures are widened by a bound of that rounding, so it
+/// stands for the exact triangle.
+fn triangle_as_tensor(p: &TriPatch) -> Result<TensorPatch> {
+    let n = p.degree();
+    let pts = p.points();
+    let w = p.weights();
+    // Control point (i, j): j outer, i inner.
+    let index = |i: usize, j: usize| (0..j).map(|r| n + 1 - r).sum::<usize>() + i;
+    let hom = |i: usize, j: usize| -> [f64; 4] {
+        let k = index(i, j);
+        let wk = w.map_or(1.0, |w| w[k]);
+        [pts[k].x * wk, pts[k].y * wk, pts[k].z * wk, wk]
+    };
+    let binom = |n: usize, k: usize| -> f64 { (0..k).fold(1.0f64, |r, i| r * (n - i) as f64 / (i + 1) as f64) };
+    let mut points = Vec::with_capacity((n + 1) * (n + 1));
+    let mut weights = Vec::with_capacity((n + 1) * (n + 1));
+    let mut big = 0.0f64;
+    for a in 0..=n {
+        for l in 0..=n {
+            let mut c = [0.0f64; 4];
+            for j in l.saturating_sub(n - a)..=a.min(l) {
+                let wt = binom(a, j) * binom(n - a, l - j) / binom(n, l);
+                let h = hom(a - j, j);
+                for (x, y) in c.iter_mut().zip(h) {
+                    *x += wt * y;
+                    big = big.max(y.abs());
+                }
+            }
+            if w.is_some() {
+                points.push(DVec3::new(c[0] / c[3], c[1] / c[3], c[2] / c[3]));
+                weights.push(c[3]);
+            } else {
+                points.push(DVec3::new(c[0], c[1], c[2]));
+            }
+        }
+    }
+    let mut t = TensorPatch::new(n, n, points, w.map(|_| weights))?;
+    // Binomials below 2⁵³ are exact; each weight carries ≤ 4 roundings, each
+    // term 1 more, the sum n + 1, the division and the patch's own products
+    // 3: (2n + 16)·2⁻⁵³ of the largest coordinate bounds it all.
+    t.widen((2 * n + 16) as f64 * f64::EPSILON * 0.5 * big * 2.0)?;
+    Ok(t)
 }
 
 fn split(b: &Box4) -> ([[f64; 2]; 2], [[f64; 2]; 2]) {
