@@ -57,10 +57,6 @@ fn bad_input_is_one_line_and_exit_2() {
         "bad.json",
         r#"{"type": "tensor", "degree": [1, 1], "points": [[0, 0, 0]]}"#,
     );
-    let tri = write(
-        "tri.json",
-        r#"{"type": "triangle", "degree": 1, "points": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]}"#,
-    );
     for args in [
         vec!["ssi", "--a", a.to_str().unwrap(), "--b", bad.to_str().unwrap()],
         vec![
