@@ -5,6 +5,7 @@ mod bernstein;
 mod crosscheck;
 mod input;
 mod json;
+mod project;
 mod ray;
 mod solve;
 mod tables;
@@ -34,6 +35,8 @@ enum Command {
     Ray(ray::RayArgs),
     /// Referee claimed ray hits (a fast solver's) against the certified hits.
     Crosscheck(crosscheck::CrosscheckArgs),
+    /// The certified closest point of a patch to each of many points.
+    Project(project::ProjectArgs),
     /// Print the exact Bernstein–Bézier coefficients of a polynomial in u, v.
     Bernstein(bernstein::BernsteinArgs),
 }
@@ -50,7 +53,7 @@ pub fn main() -> ExitCode {
             return ExitCode::SUCCESS;
         }
         Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
-            eprintln!("rootclip: missing subcommand (bernstein, crosscheck, ray, solve, tables); see rootclip --help");
+            eprintln!("rootclip: missing subcommand (bernstein, crosscheck, project, ray, solve, tables); see rootclip --help");
             return ExitCode::from(2);
         }
         Err(e) => {
@@ -71,6 +74,7 @@ pub fn main() -> ExitCode {
         Command::Tables(args) => tables::run(&args),
         Command::Ray(args) => ray::run(&args),
         Command::Crosscheck(args) => crosscheck::run(&args),
+        Command::Project(args) => project::run(&args),
         Command::Solve(args) => solve::run(&args),
     };
     match out {
