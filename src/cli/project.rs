@@ -84,7 +84,9 @@ fn point_json(p: &Projection) -> PointJson {
 
 pub(super) fn run(args: &ProjectArgs) -> Result<String> {
     if args.patch == "-" && args.points == "-" {
-        return Err(Error::InvalidOption("--patch and --points cannot both read standard input".into()));
+        return Err(Error::InvalidOption(
+            "--patch and --points cannot both read standard input".into(),
+        ));
     }
     let patch = parse_patch(&read_input(&args.patch)?)?;
     let points = parse_points(&read_input(&args.points)?)?;

@@ -275,7 +275,8 @@ impl<S: Scalar> TensorBezier<S> {
                     let au = wu[i * (m2 + 1) + i2].clone() * a.clone();
                     for j2 in 0..=n2 {
                         let k = (i + i2) * (n + 1) + j + j2;
-                        let term = au.clone() * wv[j * (n2 + 1) + j2].clone() * other.coeffs[i2 * (n2 + 1) + j2].clone();
+                        let term =
+                            au.clone() * wv[j * (n2 + 1) + j2].clone() * other.coeffs[i2 * (n2 + 1) + j2].clone();
                         coeffs[k] = coeffs[k].clone() + term;
                     }
                 }
@@ -293,10 +294,21 @@ impl<S: Scalar> TensorBezier<S> {
     pub fn add(&self, other: &Self) -> Self {
         let ((m1, n1), (m2, n2)) = (self.degree(), other.degree());
         let (m, n) = (m1.max(m2), n1.max(n2));
-        let lift = |p: &Self| if p.degree() == (m, n) { p.clone() } else { p.elevate(m, n).unwrap_or_else(|_| p.clone()) };
+        let lift = |p: &Self| {
+            if p.degree() == (m, n) {
+                p.clone()
+            } else {
+                p.elevate(m, n).unwrap_or_else(|_| p.clone())
+            }
+        };
         let (a, b) = (lift(self), lift(other));
         Self {
-            coeffs: a.coeffs.iter().zip(&b.coeffs).map(|(x, y)| x.clone() + y.clone()).collect(),
+            coeffs: a
+                .coeffs
+                .iter()
+                .zip(&b.coeffs)
+                .map(|(x, y)| x.clone() + y.clone())
+                .collect(),
             ..a
         }
     }

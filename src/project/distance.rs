@@ -7,46 +7,88 @@ use crate::scalar::{interval, point};
 use crate::solve::Box2;
 use inari::Interval;
 
-/// Boxes wider than this are bisected (up to [`MAX_PIECES`] pieces) before
-/// their lower bound is taken: interval evaluation overestimates in
-/// proportion to the width.
-const SPLIT_ABOVE: f64 = 1.0 / 64.0;
-/// The most pieces one box is cut into.
-const MAX_PIECES: usize = 256;
+/// Pieces a lower bound may evaluate: the refinement stops there, its bound
+/// still rigorous (the smallest over the pieces left).
+const MAX_PIECES: usize = 512;
 
 /// `|s − p|²` for an enclosure `s` of a point.
 fn squared(s: [Interval; 3], p: [f64; 3]) -> Interval {
     (0..3).fold(point(0.0), |acc, k| acc + (s[k] - point(p[k])).sqr())
 }
 
-/// A lower bound of `D` over the closed box (in the patch's parameters;
-/// the box may reach outside the domain, where the patch's polynomials are
-/// continued: still a lower bound over the part inside).
-pub(crate) fn lower_bound<P: Bb<Interval>>(net: &Net<P>, p: [f64; 3], bx: Box2) -> f64 {
-    let mut stack = vec![bx];
-    let mut lo = f64::INFINITY;
-    let mut pieces = 1;
-    while let Some(b) = stack.pop() {
-        let wide = (b.u[1] - b.u[0]).max(b.v[1] - b.v[0]) > SPLIT_ABOVE;
-        if wide && pieces + 1 <= MAX_PIECES {
-            pieces += 1;
-            let [um, vm] = b.center();
-            let (x, y) = if b.u[1] - b.u[0] >= b.v[1] - b.v[0] {
-                (Box2::new([b.u[0], um], b.v), Box2::new([um, b.u[1]], b.v))
-            } else {
-                (Box2::new(b.u, [b.v[0], vm]), Box2::new(b.u, [vm, b.v[1]]))
-            };
-            stack.push(x);
-            stack.push(y);
-            continue;
-        }
-        let s = eval_interval(net, interval(b.u[0], b.u[1]), interval(b.v[0], b.v[1]));
-        let d = squared(s, p);
-        // An empty or NaN enclosure bounds nothing: 0 is always a lower bound.
-        let l = if d.is_empty() || d.inf().is_nan() { 0.0 } else { d.inf().max(0.0) };
-        lo = lo.min(l);
+/// A lower bound of `D` over one box by interval evaluation.
+fn box_lower<P: Bb<Interval>>(net: &Net<P>, p: [f64; 3], b: &Box2) -> f64 {
+    let d = squared(
+        eval_interval(net, interval(b.u[0], b.u[1]), interval(b.v[0], b.v[1])),
+        p,
+    );
+    // An empty or NaN enclosure bounds nothing: 0 is always a lower bound.
+    if d.is_empty() || d.inf().is_nan() {
+        0.0
+    } else {
+        d.inf().max(0.0)
     }
-    lo
+}
+
+/// A lower bound of `D` over the closed box (in the patch's parameters; the
+/// box may reach outside the domain, where the patch's polynomials are
+/// continued: still a lower bound over the part inside), refined best first:
+/// the piece with the smallest bound is bisected across its longer side
+/// until that bound reaches `target` (no need to know more: the region
+/// cannot hold the minimum below it) or the pieces run out.
+pub(crate) fn lower_bound<P: Bb<Interval>>(net: &Net<P>, p: [f64; 3], bx: Box2, target: f64) -> f64 {
+    let first = box_lower(net, p, &bx);
+    let mut heap = std::collections::BinaryHeap::new();
+    heap.push(Piece { lo: first, bx });
+    let mut pieces = 1;
+    while let Some(top) = heap.peek() {
+        let (lo, b) = (top.lo, top.bx);
+        let w = (b.u[1] - b.u[0]).max(b.v[1] - b.v[0]);
+        if lo >= target || pieces + 2 > MAX_PIECES || w <= f64::EPSILON * 4.0 {
+            return lo;
+        }
+        heap.pop();
+        let [um, vm] = b.center();
+        let (x, y) = if b.u[1] - b.u[0] >= b.v[1] - b.v[0] {
+            (Box2::new([b.u[0], um], b.v), Box2::new([um, b.u[1]], b.v))
+        } else {
+            (Box2::new(b.u, [b.v[0], vm]), Box2::new(b.u, [vm, b.v[1]]))
+        };
+        for c in [x, y] {
+            // A child's bound never drops below its parent's: the parent's
+            // enclosure holds the child's values.
+            heap.push(Piece {
+                lo: box_lower(net, p, &c).max(lo),
+                bx: c,
+            });
+        }
+        pieces += 2;
+    }
+    first
+}
+
+/// A box in the refinement, ordered so that the heap's top has the smallest
+/// bound.
+struct Piece {
+    lo: f64,
+    bx: Box2,
+}
+
+impl PartialEq for Piece {
+    fn eq(&self, o: &Self) -> bool {
+        self.lo.total_cmp(&o.lo).is_eq()
+    }
+}
+impl Eq for Piece {}
+impl PartialOrd for Piece {
+    fn partial_cmp(&self, o: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Piece {
+    fn cmp(&self, o: &Self) -> std::cmp::Ordering {
+        o.lo.total_cmp(&self.lo)
+    }
 }
 
 /// An upper bound of `D` at the point `(u, v)` (which must lie in the closed
@@ -66,6 +108,7 @@ pub(crate) fn sqrt_range(lo: f64, hi: f64) -> [f64; 2] {
     if d.is_empty() {
         [0.0, f64::INFINITY]
     } else {
-        [d.inf(), d.sup()]
+        // (+ 0.0 turns a −0 into +0.)
+        [d.inf() + 0.0, d.sup()]
     }
 }

@@ -199,7 +199,7 @@ fn decide(patch: &Patch, mut cands: Vec<Candidate>) -> Projection {
     let hi = cands.iter().map(|c| c.d[1]).fold(f64::INFINITY, f64::min);
     let lo = cands.iter().map(|c| c.d[0]).fold(f64::INFINITY, f64::min);
     cands.retain(|c| c.d[0] <= hi);
-    let cands = merge_touching(cands);
+    let mut cands = merge_touching(cands);
     cands.sort_by(|a, b| a.d[1].total_cmp(&b.d[1]).then(a.d[0].total_cmp(&b.d[0])));
     let feet: Vec<Foot> = cands
         .iter()
@@ -218,7 +218,9 @@ fn decide(patch: &Patch, mut cands: Vec<Candidate>) -> Projection {
         many if !many.is_empty() && many.iter().all(|f| f.certified) => ProjectionStatus::Ties,
         _ => ProjectionStatus::Undecided,
     };
-    let (u, v, point) = feet.first().map_or((f64::NAN, f64::NAN, DVec3::NAN), |f| (f.u, f.v, f.point));
+    let (u, v, point) = feet
+        .first()
+        .map_or((f64::NAN, f64::NAN, DVec3::NAN), |f| (f.u, f.v, f.point));
     Projection {
         u,
         v,
@@ -235,10 +237,7 @@ fn merge_touching(cands: Vec<Candidate>) -> Vec<Candidate> {
     let mut out: Vec<Candidate> = Vec::with_capacity(cands.len());
     for c in cands {
         let mut merged = c;
-        loop {
-            let Some(k) = out.iter().position(|o| o.bx.overlaps(&merged.bx)) else {
-                break;
-            };
+        while let Some(k) = out.iter().position(|o| o.bx.overlaps(&merged.bx)) {
             let o = out.swap_remove(k);
             let best = if o.d[1] <= merged.d[1] { &o } else { &merged };
             merged = Candidate {

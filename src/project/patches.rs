@@ -18,7 +18,7 @@ use inari::Interval;
 pub(super) fn candidates(patch: &Patch, p: [f64; 3], opts: &SolveOptions) -> Result<Vec<Candidate>> {
     match patch {
         Patch::Triangle(t) => triangle(t, p, opts),
-        Patch::Tensor(t) => tensor(t, p, opts),
+        Patch::Tensor(t) => tensor(t, p, opts, f64::INFINITY),
         Patch::Bspline(s) => bspline(s, p, opts),
     }
 }
@@ -39,7 +39,10 @@ fn candidate<P: NetBb<Interval>>(
         at,
         kind,
         certified,
-        d: [lower_bound(net, p, bx), upper_at(net, p, at[0], at[1])],
+        d: [
+            lower_bound(net, p, bx, f64::NEG_INFINITY),
+            upper_at(net, p, at[0], at[1]),
+        ],
     }
 }
 
@@ -69,7 +72,17 @@ fn clamp_triangle([u, v]: [f64; 2]) -> [f64; 2] {
     }
 }
 
-fn tensor(t: &TensorPatch, p: [f64; 3], opts: &SolveOptions) -> Result<Vec<Candidate>> {
+/// Tightens the lower bounds of the candidates that might hold the minimum
+/// (their cheap bound is below the best upper bound, `outer` included) by
+/// refining them against that bound.
+fn refine<P: NetBb<Interval>>(net: &Net<P>, p: [f64; 3], cands: &mut [Candidate], outer: f64) {
+    let best = cands.iter().map(|c| c.d[1]).fold(outer, f64::min);
+    for c in cands.iter_mut().filter(|c| c.d[0] < best) {
+        c.d[0] = c.d[0].max(lower_bound(net, p, c.bx, best));
+    }
+}
+
+fn tensor(t: &TensorPatch, p: [f64; 3], opts: &SolveOptions, outer: f64) -> Result<Vec<Candidate>> {
     let net = t.inet();
     let rational = t.weights().is_some();
     let mut out = Vec::new();
@@ -77,7 +90,14 @@ fn tensor(t: &TensorPatch, p: [f64; 3], opts: &SolveOptions) -> Result<Vec<Candi
     match solve_square(&f, &g, opts) {
         Ok(sol) => out.extend(regions(&sol).map(|(bx, c)| candidate(net, p, bx, FootKind::Interior, c, clamp_square))),
         // An identically zero equation: every interior point may be critical.
-        Err(_) => out.push(candidate(net, p, Box2::new([0.0, 1.0], [0.0, 1.0]), FootKind::Interior, false, clamp_square)),
+        Err(_) => out.push(candidate(
+            net,
+            p,
+            Box2::new([0.0, 1.0], [0.0, 1.0]),
+            FootKind::Interior,
+            false,
+            clamp_square,
+        )),
     }
     let (m, n) = t.degree();
     // The four edges as curves on [0, 1]: (fixed direction, at), each a net
@@ -107,8 +127,16 @@ fn tensor(t: &TensorPatch, p: [f64; 3], opts: &SolveOptions) -> Result<Vec<Candi
         })?;
     }
     for (u, v) in [(0.0, 0.0), (0.0, 1.0), (1.0, 0.0), (1.0, 1.0)] {
-        out.push(candidate(net, p, Box2::new([u, u], [v, v]), FootKind::Corner, true, clamp_square));
+        out.push(candidate(
+            net,
+            p,
+            Box2::new([u, u], [v, v]),
+            FootKind::Corner,
+            true,
+            clamp_square,
+        ));
     }
+    refine(net, p, &mut out, outer);
     Ok(out)
 }
 
@@ -119,20 +147,33 @@ fn triangle(t: &TriPatch, p: [f64; 3], opts: &SolveOptions) -> Result<Vec<Candid
     let mut out = Vec::new();
     let (f, g) = interior_system(&net.c, p, rational);
     match solve_triangle(&f, &g, opts) {
-        Ok(sol) => out.extend(regions(&sol).map(|(bx, c)| candidate(net, p, bx, FootKind::Interior, c, clamp_triangle))),
-        Err(_) => out.push(candidate(net, p, Box2::new([0.0, 1.0], [0.0, 1.0]), FootKind::Interior, false, clamp_triangle)),
+        Ok(sol) => {
+            out.extend(regions(&sol).map(|(bx, c)| candidate(net, p, bx, FootKind::Interior, c, clamp_triangle)))
+        }
+        Err(_) => out.push(candidate(
+            net,
+            p,
+            Box2::new([0.0, 1.0], [0.0, 1.0]),
+            FootKind::Interior,
+            false,
+            clamp_triangle,
+        )),
     }
     // Edges: v = 0 (u from 0 to 1: f_{i,0,n−i}), u = 0 (v from 0 to 1:
     // f_{0,j,n−j}), u + v = 1 (u from 0 to 1, v = 1 − u: f_{i,n−i,0}). On each,
     // B^n_{ijk} restricts to the univariate Bernstein polynomial.
     type Place = fn(Interval) -> Box2;
-    let edges: [(fn(usize, usize) -> (usize, usize), Place); 3] = [
+    type Index = fn(usize, usize) -> (usize, usize);
+    let edges: [(Index, Place); 3] = [
         (|_n, i| (i, 0), |s| Box2::new([s.inf(), s.sup()], [0.0, 0.0])),
         (|_n, j| (0, j), |s| Box2::new([0.0, 0.0], [s.inf(), s.sup()])),
-        (|n, i| (i, n - i), |s| {
-            let v = point(1.0) - s;
-            Box2::new([s.inf(), s.sup()], [v.inf().max(0.0), v.sup()])
-        }),
+        (
+            |n, i| (i, n - i),
+            |s| {
+                let v = point(1.0) - s;
+                Box2::new([s.inf(), s.sup()], [v.inf().max(0.0), v.sup()])
+            },
+        ),
     ];
     for (index, place) in edges {
         let curve: [TensorBezier<Interval>; 4] = std::array::from_fn(|k| {
@@ -146,12 +187,27 @@ fn triangle(t: &TriPatch, p: [f64; 3], opts: &SolveOptions) -> Result<Vec<Candid
             TensorBezier::on_unit_square(n, 0, coeffs).expect("finite net")
         });
         edge(&curve, p, rational, opts, &mut |s, certified| {
-            out.push(candidate(net, p, place(interval(s[0], s[1])), FootKind::Edge, certified, clamp_triangle))
+            out.push(candidate(
+                net,
+                p,
+                place(interval(s[0], s[1])),
+                FootKind::Edge,
+                certified,
+                clamp_triangle,
+            ))
         })?;
     }
     for (u, v) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)] {
-        out.push(candidate(net, p, Box2::new([u, u], [v, v]), FootKind::Corner, true, clamp_triangle));
+        out.push(candidate(
+            net,
+            p,
+            Box2::new([u, u], [v, v]),
+            FootKind::Corner,
+            true,
+            clamp_triangle,
+        ));
     }
+    refine(net, p, &mut out, f64::INFINITY);
     Ok(out)
 }
 
@@ -175,7 +231,12 @@ fn edge(
             for r in &sol.roots {
                 push(r.interval, true);
             }
-            for c in sol.clusters.iter().map(|c| c.interval).chain(sol.leftovers.iter().copied()) {
+            for c in sol
+                .clusters
+                .iter()
+                .map(|c| c.interval)
+                .chain(sol.leftovers.iter().copied())
+            {
                 push(c, false);
             }
         }
@@ -198,7 +259,7 @@ fn bspline(s: &BsplineSurface, p: [f64; 3], opts: &SolveOptions) -> Result<Vec<C
         .pieces()
         .iter()
         .enumerate()
-        .map(|(k, piece)| (lower_bound(piece.patch().inet(), p, unit), k))
+        .map(|(k, piece)| (lower_bound(piece.patch().inet(), p, unit, f64::NEG_INFINITY), k))
         .collect();
     order.sort_by(|a, b| a.0.total_cmp(&b.0));
     let mut out: Vec<Candidate> = Vec::new();
@@ -208,7 +269,7 @@ fn bspline(s: &BsplineSurface, p: [f64; 3], opts: &SolveOptions) -> Result<Vec<C
             break;
         }
         let piece = &s.pieces()[k];
-        let local = tensor(piece.patch(), p, opts)?;
+        let local = tensor(piece.patch(), p, opts, best)?;
         let net = piece.patch().inet();
         let (ur, vr) = (piece.u_range(), piece.v_range());
         let to_knots = |range: [f64; 2], b: [f64; 2]| {
@@ -220,10 +281,7 @@ fn bspline(s: &BsplineSurface, p: [f64; 3], opts: &SolveOptions) -> Result<Vec<C
             let bx = Box2::new(to_knots(ur, c.bx.u), to_knots(vr, c.bx.v));
             // A point of the piece in knot parameters, and the enclosure of
             // its local coordinates.
-            let at = [
-                bx.center()[0].clamp(ur[0], ur[1]),
-                bx.center()[1].clamp(vr[0], vr[1]),
-            ];
+            let at = [bx.center()[0].clamp(ur[0], ur[1]), bx.center()[1].clamp(vr[0], vr[1])];
             let local_of = |x: f64, r: [f64; 2]| {
                 let l = (point(x) - point(r[0])) / (point(r[1]) - point(r[0]));
                 [l.inf().max(0.0), l.sup().min(1.0)]
