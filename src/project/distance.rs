@@ -16,12 +16,9 @@ fn squared(s: [Interval; 3], p: [f64; 3]) -> Interval {
     (0..3).fold(point(0.0), |acc, k| acc + (s[k] - point(p[k])).sqr())
 }
 
-/// A lower bound of `D` over one box by interval evaluation.
-fn box_lower<P: Bb<Interval>>(net: &Net<P>, p: [f64; 3], b: &Box2) -> f64 {
-    let d = squared(
-        eval_interval(net, interval(b.u[0], b.u[1]), interval(b.v[0], b.v[1])),
-        p,
-    );
+/// A lower bound of `D` over one box by interval evaluation of the net.
+pub(crate) fn box_lower<P: Bb<Interval>>(net: &Net<P>, p: [f64; 3], b: &Box2) -> f64 {
+    let d = squared(eval_interval(net, interval(b.u[0], b.u[1]), interval(b.v[0], b.v[1])), p);
     // An empty or NaN enclosure bounds nothing: 0 is always a lower bound.
     if d.is_empty() || d.inf().is_nan() {
         0.0
@@ -32,19 +29,20 @@ fn box_lower<P: Bb<Interval>>(net: &Net<P>, p: [f64; 3], b: &Box2) -> f64 {
 
 /// A lower bound of `D` over the closed box (in the patch's parameters; the
 /// box may reach outside the domain, where the patch's polynomials are
-/// continued: still a lower bound over the part inside), refined best first:
-/// the piece with the smallest bound is bisected across its longer side
-/// until that bound reaches `target` (no need to know more: the region
-/// cannot hold the minimum below it) or the pieces run out.
-pub(crate) fn lower_bound<P: Bb<Interval>>(net: &Net<P>, p: [f64; 3], bx: Box2, target: f64) -> f64 {
-    let first = box_lower(net, p, &bx);
+/// continued: still a lower bound over the part inside), refined best first
+/// from the one-box bound `eval`: the piece with the smallest bound is
+/// bisected across its longer side until that bound reaches `target` (no
+/// need to know more: the region cannot hold the minimum below it) or the
+/// pieces run out.
+pub(crate) fn lower_bound(eval: &dyn Fn(&Box2) -> f64, bx: Box2, target: f64) -> f64 {
+    let first = eval(&bx);
     let mut heap = std::collections::BinaryHeap::new();
     heap.push(Piece { lo: first, bx });
     let mut pieces = 1;
     while let Some(top) = heap.peek() {
         let (lo, b) = (top.lo, top.bx);
         let w = (b.u[1] - b.u[0]).max(b.v[1] - b.v[0]);
-        if lo >= target || pieces + 2 > MAX_PIECES || w <= f64::EPSILON * 4.0 {
+        if lo >= target || pieces + 2 > MAX_PIECES || w <= 1e-12 {
             return lo;
         }
         heap.pop();
@@ -58,7 +56,7 @@ pub(crate) fn lower_bound<P: Bb<Interval>>(net: &Net<P>, p: [f64; 3], bx: Box2, 
             // A child's bound never drops below its parent's: the parent's
             // enclosure holds the child's values.
             heap.push(Piece {
-                lo: box_lower(net, p, &c).max(lo),
+                lo: eval(&c).max(lo),
                 bx: c,
             });
         }

@@ -45,6 +45,7 @@
 
 mod critical;
 mod distance;
+mod ivpoly;
 mod patches;
 
 use crate::error::{Error, Result};

@@ -3,7 +3,8 @@
 //! surfaces piece by piece.
 
 use super::critical::{edge_function, interior_system};
-use super::distance::{lower_bound, upper_at};
+use super::distance::{box_lower, lower_bound, upper_at};
+use super::ivpoly::IvPoly;
 use super::{Candidate, FootKind};
 use crate::error::Result;
 use crate::poly::{tri_index, TensorBezier, UniBezier};
@@ -11,6 +12,8 @@ use crate::ray::bspline::BsplineSurface;
 use crate::ray::patch::{Bb as NetBb, Net, TensorPatch, TriPatch};
 use crate::ray::Patch;
 use crate::scalar::{interval, point};
+use crate::scalar::iv::Iv;
+use crate::solve::rect::{eval_box, solve_rect_iv, Query, RectOptions, RectProblem};
 use crate::solve::{solve_square, solve_triangle, solve_uni, Box2, Solution, SolveOptions, UniOptions};
 use inari::Interval;
 
@@ -23,11 +26,68 @@ pub(super) fn candidates(patch: &Patch, p: [f64; 3], opts: &SolveOptions) -> Res
     }
 }
 
-/// A candidate region, its bounds computed on `net`; `at` is moved into the
-/// closed domain by `clamp`.
-fn candidate<P: NetBb<Interval>>(
-    net: &Net<P>,
+/// Bounds of the squared distance `D` over boxes and at points.
+trait Dist {
+    /// A lower bound of `D` over the box (one evaluation).
+    fn lower(&self, b: &Box2) -> f64;
+    /// An upper bound of `D` at `(u, v)`.
+    fn upper(&self, u: f64, v: f64) -> f64;
+}
+
+/// `D` through the interval homogeneous net (inari).
+struct NetDist<'a, P> {
+    net: &'a Net<P>,
     p: [f64; 3],
+}
+
+impl<P: NetBb<Interval>> Dist for NetDist<'_, P> {
+    fn lower(&self, b: &Box2) -> f64 {
+        box_lower(self.net, self.p, b)
+    }
+    fn upper(&self, u: f64, v: f64) -> f64 {
+        upper_at(self.net, self.p, u, v)
+    }
+}
+
+/// `D = num/den` as tensor polynomials on `[0, 1]²` in [`Iv`].
+struct PolyDist<'a> {
+    num: &'a IvPoly,
+    den: Option<&'a IvPoly>,
+}
+
+impl PolyDist<'_> {
+    fn over(&self, u: [f64; 2], v: [f64; 2]) -> Iv {
+        let n = eval_box(&self.num.c, self.num.m, self.num.n, u, v);
+        match self.den {
+            Some(d) => n.div(eval_box(&d.c, d.m, d.n, u, v)),
+            None => n,
+        }
+    }
+}
+
+impl Dist for PolyDist<'_> {
+    fn lower(&self, b: &Box2) -> f64 {
+        let d = self.over(b.u, b.v);
+        if d.lo.is_nan() {
+            0.0
+        } else {
+            d.lo.max(0.0)
+        }
+    }
+    fn upper(&self, u: f64, v: f64) -> f64 {
+        let d = self.over([u, u], [v, v]);
+        if d.hi.is_nan() {
+            f64::INFINITY
+        } else {
+            d.hi
+        }
+    }
+}
+
+/// A candidate region with its bounds; `at` is moved into the closed domain
+/// by `clamp`.
+fn candidate(
+    dist: &dyn Dist,
     bx: Box2,
     kind: FootKind,
     certified: bool,
@@ -39,10 +99,7 @@ fn candidate<P: NetBb<Interval>>(
         at,
         kind,
         certified,
-        d: [
-            lower_bound(net, p, bx, f64::NEG_INFINITY),
-            upper_at(net, p, at[0], at[1]),
-        ],
+        d: [dist.lower(&bx), dist.upper(at[0], at[1])],
     }
 }
 
@@ -75,31 +132,91 @@ fn clamp_triangle([u, v]: [f64; 2]) -> [f64; 2] {
 /// Tightens the lower bounds of the candidates that might hold the minimum
 /// (their cheap bound is below the best upper bound, `outer` included) by
 /// refining them against that bound.
-fn refine<P: NetBb<Interval>>(net: &Net<P>, p: [f64; 3], cands: &mut [Candidate], outer: f64) {
+fn refine(dist: &dyn Dist, cands: &mut [Candidate], outer: f64) {
     let best = cands.iter().map(|c| c.d[1]).fold(outer, f64::min);
     for c in cands.iter_mut().filter(|c| c.d[0] < best) {
-        c.d[0] = c.d[0].max(lower_bound(net, p, c.bx, best));
+        c.d[0] = c.d[0].max(lower_bound(&|b: &Box2| dist.lower(b), c.bx, best));
     }
 }
 
+/// The degrees of the box solver's stack-allocated nets.
+const RECT_MAX_DEGREE: usize = 23;
+
 fn tensor(t: &TensorPatch, p: [f64; 3], opts: &SolveOptions, outer: f64) -> Result<Vec<Candidate>> {
-    let net = t.inet();
-    let rational = t.weights().is_some();
-    let mut out = Vec::new();
-    let (f, g) = interior_system(&net.c, p, rational);
-    match solve_square(&f, &g, opts) {
-        Ok(sol) => out.extend(regions(&sol).map(|(bx, c)| candidate(net, p, bx, FootKind::Interior, c, clamp_square))),
-        // An identically zero equation: every interior point may be critical.
-        Err(_) => out.push(candidate(
-            net,
-            p,
-            Box2::new([0.0, 1.0], [0.0, 1.0]),
-            FootKind::Interior,
-            false,
-            clamp_square,
-        )),
-    }
     let (m, n) = t.degree();
+    let rational = t.weights().is_some();
+    let (big_m, big_n) = if rational { (3 * m, 3 * n) } else { (2 * m, 2 * n) };
+    if big_m > RECT_MAX_DEGREE || big_n > RECT_MAX_DEGREE {
+        return tensor_general(t, p, opts, outer);
+    }
+    // The homogeneous net in Iv, row-major.
+    let col = |k: usize| IvPoly::new(m, n, t.ivnet().iter().map(|h| h[k]).collect());
+    let x = [col(0), col(1), col(2)];
+    let w = col(3);
+    let diff: [IvPoly; 3] = std::array::from_fn(|k| {
+        if rational {
+            x[k].sub(&w.map(|c| c.mul(Iv::point(p[k]))))
+        } else {
+            x[k].map(|c| c.sub(Iv::point(p[k])))
+        }
+    });
+    let dot = |a: &[IvPoly; 3], b: &[IvPoly; 3]| a[0].mul(&b[0]).add(&a[1].mul(&b[1])).add(&a[2].mul(&b[2]));
+    let (f, g, num, den) = if rational {
+        let (wu, wv) = (w.d_u(), w.d_v());
+        let tu: [IvPoly; 3] = std::array::from_fn(|k| x[k].d_u().mul(&w).sub(&x[k].mul(&wu)));
+        let tv: [IvPoly; 3] = std::array::from_fn(|k| x[k].d_v().mul(&w).sub(&x[k].mul(&wv)));
+        (dot(&diff, &tu), dot(&diff, &tv), dot(&diff, &diff), Some(w.mul(&w)))
+    } else {
+        let xu: [IvPoly; 3] = std::array::from_fn(|k| x[k].d_u());
+        let xv: [IvPoly; 3] = std::array::from_fn(|k| x[k].d_v());
+        (dot(&diff, &xu), dot(&diff, &xv), dot(&diff, &diff), None)
+    };
+    let lift = |q: &IvPoly| q.elevate(big_m, big_n);
+    let (f, g, num, den) = (lift(&f), lift(&g), lift(&num), den.as_ref().map(lift));
+    let dist = PolyDist {
+        num: &num,
+        den: den.as_ref(),
+    };
+    let mut out = Vec::new();
+    let unit = [[Iv::point(0.0), Iv::point(1.0)]; 2];
+    let problem = RectProblem {
+        m: big_m,
+        n: big_n,
+        domain: unit,
+        f: f.c.clone(),
+        g: g.c.clone(),
+        num: Some(num.c.clone()),
+        den: den.as_ref().map(|d| d.c.clone()),
+    };
+    let ropts = RectOptions {
+        eps: opts.eps.min(0.5),
+        max_boxes: opts.max_boxes,
+        query: Query::Nearest,
+        ..RectOptions::default()
+    };
+    match solve_rect_iv(problem, &ropts) {
+        Ok(r) if r.solution.complete => {
+            out.extend(regions(&r.solution).map(|(bx, c)| candidate(&dist, bx, FootKind::Interior, c, clamp_square)))
+        }
+        // Out of budget or a vanishing equation: the general route decides.
+        _ => return tensor_general(t, p, opts, outer),
+    }
+    let net = t.inet();
+    tensor_edges(net, p, rational, opts, &dist, &mut out)?;
+    refine(&dist, &mut out, outer);
+    Ok(out)
+}
+
+/// The four edges and corners of a tensor patch, as candidates.
+fn tensor_edges(
+    net: &Net<TensorBezier<Interval>>,
+    p: [f64; 3],
+    rational: bool,
+    opts: &SolveOptions,
+    dist: &dyn Dist,
+    out: &mut Vec<Candidate>,
+) -> Result<()> {
+    let (m, n) = net.c[0].degree();
     // The four edges as curves on [0, 1]: (fixed direction, at), each a net
     // of bidegree (k, 0).
     for (along_u, fixed) in [(true, 0.0), (true, 1.0), (false, 0.0), (false, 1.0)] {
@@ -123,37 +240,45 @@ fn tensor(t: &TensorPatch, p: [f64; 3], opts: &SolveOptions, outer: f64) -> Resu
             }
         };
         edge(&curve, p, rational, opts, &mut |s, certified| {
-            out.push(candidate(net, p, place(s), FootKind::Edge, certified, clamp_square))
+            out.push(candidate(dist, place(s), FootKind::Edge, certified, clamp_square))
         })?;
     }
     for (u, v) in [(0.0, 0.0), (0.0, 1.0), (1.0, 0.0), (1.0, 1.0)] {
-        out.push(candidate(
-            net,
-            p,
-            Box2::new([u, u], [v, v]),
-            FootKind::Corner,
-            true,
-            clamp_square,
-        ));
+        out.push(candidate(dist, Box2::new([u, u], [v, v]), FootKind::Corner, true, clamp_square));
     }
-    refine(net, p, &mut out, outer);
+    Ok(())
+}
+
+/// Tensor patches of high degree: the critical-point system in inari
+/// intervals, solved through the triangles.
+fn tensor_general(t: &TensorPatch, p: [f64; 3], opts: &SolveOptions, outer: f64) -> Result<Vec<Candidate>> {
+    let net = t.inet();
+    let rational = t.weights().is_some();
+    let dist = NetDist { net, p };
+    let mut out = Vec::new();
+    let (f, g) = interior_system(&net.c, p, rational);
+    match solve_square(&f, &g, opts) {
+        Ok(sol) => out.extend(regions(&sol).map(|(bx, c)| candidate(&dist, bx, FootKind::Interior, c, clamp_square))),
+        // An identically zero equation: every interior point may be critical.
+        Err(_) => out.push(candidate(&dist, Box2::new([0.0, 1.0], [0.0, 1.0]), FootKind::Interior, false, clamp_square)),
+    }
+    tensor_edges(net, p, rational, opts, &dist, &mut out)?;
+    refine(&dist, &mut out, outer);
     Ok(out)
 }
 
 fn triangle(t: &TriPatch, p: [f64; 3], opts: &SolveOptions) -> Result<Vec<Candidate>> {
     let net = t.inet();
+    let dist = NetDist { net, p };
     let rational = t.weights().is_some();
     let n = t.degree();
     let mut out = Vec::new();
     let (f, g) = interior_system(&net.c, p, rational);
     match solve_triangle(&f, &g, opts) {
         Ok(sol) => {
-            out.extend(regions(&sol).map(|(bx, c)| candidate(net, p, bx, FootKind::Interior, c, clamp_triangle)))
+            out.extend(regions(&sol).map(|(bx, c)| candidate(&dist, bx, FootKind::Interior, c, clamp_triangle)))
         }
-        Err(_) => out.push(candidate(
-            net,
-            p,
-            Box2::new([0.0, 1.0], [0.0, 1.0]),
+        Err(_) => out.push(candidate(&dist, Box2::new([0.0, 1.0], [0.0, 1.0]),
             FootKind::Interior,
             false,
             clamp_triangle,
@@ -187,10 +312,7 @@ fn triangle(t: &TriPatch, p: [f64; 3], opts: &SolveOptions) -> Result<Vec<Candid
             TensorBezier::on_unit_square(n, 0, coeffs).expect("finite net")
         });
         edge(&curve, p, rational, opts, &mut |s, certified| {
-            out.push(candidate(
-                net,
-                p,
-                place(interval(s[0], s[1])),
+            out.push(candidate(&dist, place(interval(s[0], s[1])),
                 FootKind::Edge,
                 certified,
                 clamp_triangle,
@@ -198,16 +320,13 @@ fn triangle(t: &TriPatch, p: [f64; 3], opts: &SolveOptions) -> Result<Vec<Candid
         })?;
     }
     for (u, v) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)] {
-        out.push(candidate(
-            net,
-            p,
-            Box2::new([u, u], [v, v]),
+        out.push(candidate(&dist, Box2::new([u, u], [v, v]),
             FootKind::Corner,
             true,
             clamp_triangle,
         ));
     }
-    refine(net, p, &mut out, f64::INFINITY);
+    refine(&dist, &mut out, f64::INFINITY);
     Ok(out)
 }
 
@@ -259,7 +378,7 @@ fn bspline(s: &BsplineSurface, p: [f64; 3], opts: &SolveOptions) -> Result<Vec<C
         .pieces()
         .iter()
         .enumerate()
-        .map(|(k, piece)| (lower_bound(piece.patch().inet(), p, unit, f64::NEG_INFINITY), k))
+        .map(|(k, piece)| (box_lower(piece.patch().inet(), p, &unit), k))
         .collect();
     order.sort_by(|a, b| a.0.total_cmp(&b.0));
     let mut out: Vec<Candidate> = Vec::new();
