@@ -3,6 +3,7 @@
 
 mod bernstein;
 mod crosscheck;
+mod heuristics;
 mod input;
 mod json;
 mod project;
@@ -39,6 +40,8 @@ enum Command {
     Project(project::ProjectArgs),
     /// Print the exact Bernstein–Bézier coefficients of a polynomial in u, v.
     Bernstein(bernstein::BernsteinArgs),
+    /// Seed 000's experiment: four ray–patch iterations from 121 starts, each end point refereed.
+    Heuristics(heuristics::HeuristicsArgs),
 }
 
 /// Runs the command line: parses the arguments, runs the command, prints its
@@ -53,7 +56,7 @@ pub fn main() -> ExitCode {
             return ExitCode::SUCCESS;
         }
         Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
-            eprintln!("rootclip: missing subcommand (bernstein, crosscheck, project, ray, solve, tables); see rootclip --help");
+            eprintln!("rootclip: missing subcommand (bernstein, crosscheck, heuristics, project, ray, solve, tables); see rootclip --help");
             return ExitCode::from(2);
         }
         Err(e) => {
@@ -75,6 +78,7 @@ pub fn main() -> ExitCode {
         Command::Ray(args) => ray::run(&args),
         Command::Crosscheck(args) => crosscheck::run(&args),
         Command::Project(args) => project::run(&args),
+        Command::Heuristics(args) => heuristics::run(&args),
         Command::Solve(args) => solve::run(&args),
     };
     match out {

@@ -18,7 +18,10 @@ fn squared(s: [Interval; 3], p: [f64; 3]) -> Interval {
 
 /// A lower bound of `D` over one box by interval evaluation of the net.
 pub(crate) fn box_lower<P: Bb<Interval>>(net: &Net<P>, p: [f64; 3], b: &Box2) -> f64 {
-    let d = squared(eval_interval(net, interval(b.u[0], b.u[1]), interval(b.v[0], b.v[1])), p);
+    let d = squared(
+        eval_interval(net, interval(b.u[0], b.u[1]), interval(b.v[0], b.v[1])),
+        p,
+    );
     // An empty or NaN enclosure bounds nothing: 0 is always a lower bound.
     if d.is_empty() || d.inf().is_nan() {
         0.0

@@ -71,10 +71,9 @@ impl IvPoly {
         }
         let bu: Vec<Iv> = (0..=m).map(|k| binomial(m, k)).collect();
         let bv: Vec<Iv> = (0..=n).map(|l| binomial(n, l)).collect();
-        for k in 0..=m {
-            for l in 0..=n {
-                let idx = k * (n + 1) + l;
-                c[idx] = c[idx].div(bu[k].mul(bv[l]));
+        for (row, bk) in c.chunks_mut(n + 1).zip(&bu) {
+            for (x, bl) in row.iter_mut().zip(&bv) {
+                *x = x.div(bk.mul(*bl));
             }
         }
         Self { m, n, c }
@@ -94,7 +93,11 @@ impl IvPoly {
     }
 
     fn elevate_once(&self, in_u: bool) -> Self {
-        let (m, n) = if in_u { (self.m + 1, self.n) } else { (self.m, self.n + 1) };
+        let (m, n) = if in_u {
+            (self.m + 1, self.n)
+        } else {
+            (self.m, self.n + 1)
+        };
         let k = if in_u { m } else { n };
         let weight = |i: usize| Iv::point(i as f64).div(Iv::point(k as f64));
         let get = |i: isize, j: isize| -> Iv {
@@ -209,7 +212,11 @@ mod tests {
         }
         // Every coefficient an enclosure: the product of point polynomials
         // holds the exact rational coefficients (checked on one with 1/3).
-        let third = IvPoly::new(1, 0, vec![Iv::point(1.0), Iv::point(0.0)]).mul(&IvPoly::new(2, 0, [1.0, 1.0, 1.0].map(Iv::point).to_vec()));
+        let third = IvPoly::new(1, 0, vec![Iv::point(1.0), Iv::point(0.0)]).mul(&IvPoly::new(
+            2,
+            0,
+            [1.0, 1.0, 1.0].map(Iv::point).to_vec(),
+        ));
         // (1 − u)·1 in degree 3: coefficients 1, 2/3, 1/3, 0.
         for (c, want) in third.c.iter().zip([1.0, 2.0 / 3.0, 1.0 / 3.0, 0.0]) {
             assert!(c.lo <= want && want <= c.hi, "{c:?} vs {want}");

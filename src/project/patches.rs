@@ -11,8 +11,8 @@ use crate::poly::{tri_index, TensorBezier, UniBezier};
 use crate::ray::bspline::BsplineSurface;
 use crate::ray::patch::{Bb as NetBb, Net, TensorPatch, TriPatch};
 use crate::ray::Patch;
-use crate::scalar::{interval, point};
 use crate::scalar::iv::Iv;
+use crate::scalar::{interval, point};
 use crate::solve::rect::{eval_box, solve_rect_iv, Query, RectOptions, RectProblem};
 use crate::solve::{solve_square, solve_triangle, solve_uni, Box2, Solution, SolveOptions, UniOptions};
 use inari::Interval;
@@ -49,23 +49,45 @@ impl<P: NetBb<Interval>> Dist for NetDist<'_, P> {
     }
 }
 
-/// `D = num/den` as tensor polynomials on `[0, 1]²` in [`Iv`].
-struct PolyDist<'a> {
-    num: &'a IvPoly,
-    den: Option<&'a IvPoly>,
+/// `D = Σ_k ((X_k − p_k W)/W)²` from the homogeneous net as [`IvPoly`]s,
+/// each coordinate enclosed by [`eval_box`] and squared: tight at points
+/// (no cancellation in an expanded `D`, so an on-surface point keeps a
+/// distance enclosure near `ε` rather than `√ε`) and cheap over boxes.
+struct IvNetDist<'a> {
+    /// `X_k − p_k W`, `k = 0, 1, 2`.
+    diff: &'a [IvPoly; 3],
+    /// `W`, absent for a polynomial patch.
+    w: Option<&'a IvPoly>,
 }
 
-impl PolyDist<'_> {
-    fn over(&self, u: [f64; 2], v: [f64; 2]) -> Iv {
-        let n = eval_box(&self.num.c, self.num.m, self.num.n, u, v);
-        match self.den {
-            Some(d) => n.div(eval_box(&d.c, d.m, d.n, u, v)),
-            None => n,
-        }
+/// `x²` as an enclosure (never below 0).
+fn iv_sqr(x: Iv) -> Iv {
+    if x.lo >= 0.0 {
+        x.mul(x)
+    } else if x.hi <= 0.0 {
+        let y = Iv::new(-x.hi, -x.lo);
+        y.mul(y)
+    } else {
+        let a = x.lo.abs().max(x.hi);
+        Iv::new(0.0, Iv::point(a).mul(Iv::point(a)).hi)
     }
 }
 
-impl Dist for PolyDist<'_> {
+impl IvNetDist<'_> {
+    fn over(&self, u: [f64; 2], v: [f64; 2]) -> Iv {
+        let w = self.w.map(|w| eval_box(&w.c, w.m, w.n, u, v));
+        self.diff.iter().fold(Iv::point(0.0), |acc, d| {
+            let e = eval_box(&d.c, d.m, d.n, u, v);
+            let e = match w {
+                Some(w) => e.div(w),
+                None => e,
+            };
+            acc.add(iv_sqr(e))
+        })
+    }
+}
+
+impl Dist for IvNetDist<'_> {
     fn lower(&self, b: &Box2) -> f64 {
         let d = self.over(b.u, b.v);
         if d.lo.is_nan() {
@@ -173,9 +195,9 @@ fn tensor(t: &TensorPatch, p: [f64; 3], opts: &SolveOptions, outer: f64) -> Resu
     };
     let lift = |q: &IvPoly| q.elevate(big_m, big_n);
     let (f, g, num, den) = (lift(&f), lift(&g), lift(&num), den.as_ref().map(lift));
-    let dist = PolyDist {
-        num: &num,
-        den: den.as_ref(),
+    let dist = IvNetDist {
+        diff: &diff,
+        w: rational.then_some(&w),
     };
     let mut out = Vec::new();
     let unit = [[Iv::point(0.0), Iv::point(1.0)]; 2];
@@ -244,7 +266,13 @@ fn tensor_edges(
         })?;
     }
     for (u, v) in [(0.0, 0.0), (0.0, 1.0), (1.0, 0.0), (1.0, 1.0)] {
-        out.push(candidate(dist, Box2::new([u, u], [v, v]), FootKind::Corner, true, clamp_square));
+        out.push(candidate(
+            dist,
+            Box2::new([u, u], [v, v]),
+            FootKind::Corner,
+            true,
+            clamp_square,
+        ));
     }
     Ok(())
 }
@@ -260,7 +288,13 @@ fn tensor_general(t: &TensorPatch, p: [f64; 3], opts: &SolveOptions, outer: f64)
     match solve_square(&f, &g, opts) {
         Ok(sol) => out.extend(regions(&sol).map(|(bx, c)| candidate(&dist, bx, FootKind::Interior, c, clamp_square))),
         // An identically zero equation: every interior point may be critical.
-        Err(_) => out.push(candidate(&dist, Box2::new([0.0, 1.0], [0.0, 1.0]), FootKind::Interior, false, clamp_square)),
+        Err(_) => out.push(candidate(
+            &dist,
+            Box2::new([0.0, 1.0], [0.0, 1.0]),
+            FootKind::Interior,
+            false,
+            clamp_square,
+        )),
     }
     tensor_edges(net, p, rational, opts, &dist, &mut out)?;
     refine(&dist, &mut out, outer);
@@ -275,10 +309,10 @@ fn triangle(t: &TriPatch, p: [f64; 3], opts: &SolveOptions) -> Result<Vec<Candid
     let mut out = Vec::new();
     let (f, g) = interior_system(&net.c, p, rational);
     match solve_triangle(&f, &g, opts) {
-        Ok(sol) => {
-            out.extend(regions(&sol).map(|(bx, c)| candidate(&dist, bx, FootKind::Interior, c, clamp_triangle)))
-        }
-        Err(_) => out.push(candidate(&dist, Box2::new([0.0, 1.0], [0.0, 1.0]),
+        Ok(sol) => out.extend(regions(&sol).map(|(bx, c)| candidate(&dist, bx, FootKind::Interior, c, clamp_triangle))),
+        Err(_) => out.push(candidate(
+            &dist,
+            Box2::new([0.0, 1.0], [0.0, 1.0]),
             FootKind::Interior,
             false,
             clamp_triangle,
@@ -312,7 +346,9 @@ fn triangle(t: &TriPatch, p: [f64; 3], opts: &SolveOptions) -> Result<Vec<Candid
             TensorBezier::on_unit_square(n, 0, coeffs).expect("finite net")
         });
         edge(&curve, p, rational, opts, &mut |s, certified| {
-            out.push(candidate(&dist, place(interval(s[0], s[1])),
+            out.push(candidate(
+                &dist,
+                place(interval(s[0], s[1])),
                 FootKind::Edge,
                 certified,
                 clamp_triangle,
@@ -320,7 +356,9 @@ fn triangle(t: &TriPatch, p: [f64; 3], opts: &SolveOptions) -> Result<Vec<Candid
         })?;
     }
     for (u, v) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)] {
-        out.push(candidate(&dist, Box2::new([u, u], [v, v]),
+        out.push(candidate(
+            &dist,
+            Box2::new([u, u], [v, v]),
             FootKind::Corner,
             true,
             clamp_triangle,
