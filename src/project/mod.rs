@@ -47,6 +47,7 @@ mod critical;
 mod distance;
 mod ivpoly;
 mod patches;
+mod tensor;
 
 use crate::error::{Error, Result};
 use crate::ray::Patch;
@@ -170,14 +171,35 @@ pub fn project(patch: &Patch, point: DVec3, opts: &ProjectOptions) -> Result<Pro
     if !point.is_finite() {
         return Err(Error::NonFinite(format!("point {:?}", point.to_array())));
     }
-    let p = point.to_array();
-    let candidates = patches::candidates(patch, p, &opts.solve)?;
+    project_prepared(patch, &patches::Prepared::new(patch), point, opts)
+}
+
+fn project_prepared(
+    patch: &Patch,
+    prep: &patches::Prepared<'_>,
+    point: DVec3,
+    opts: &ProjectOptions,
+) -> Result<Projection> {
+    if !point.is_finite() {
+        return Err(Error::NonFinite(format!("point {:?}", point.to_array())));
+    }
+    let candidates = patches::candidates(prep, point.to_array(), &opts.solve)?;
     Ok(decide(patch, candidates))
 }
 
 /// [`project`] for many points, in parallel (rayon), results in input order.
+/// What the points share (the critical-point system and the distance as
+/// polynomials affine in the point, see `src/project/tensor.rs`) is built
+/// once.
 pub fn project_batch(patch: &Patch, points: &[DVec3], opts: &ProjectOptions) -> Vec<Result<Projection>> {
-    points.par_iter().map(|&p| project(patch, p, opts)).collect()
+    if let Err(e) = opts.solve.validate() {
+        return points.iter().map(|_| Err(e.clone())).collect();
+    }
+    let prep = patches::Prepared::new(patch);
+    points
+        .par_iter()
+        .map(|&p| project_prepared(patch, &prep, p, opts))
+        .collect()
 }
 
 /// A candidate region with its squared-distance bounds.

@@ -4,30 +4,62 @@
 
 use super::critical::{edge_function, interior_system};
 use super::distance::{box_lower, lower_bound, upper_at};
-use super::ivpoly::IvPoly;
+use super::tensor::TensorPrep;
 use super::{Candidate, FootKind};
 use crate::error::Result;
 use crate::poly::{tri_index, TensorBezier, UniBezier};
 use crate::ray::bspline::BsplineSurface;
 use crate::ray::patch::{Bb as NetBb, Net, TensorPatch, TriPatch};
 use crate::ray::Patch;
-use crate::scalar::iv::Iv;
 use crate::scalar::{interval, point};
-use crate::solve::rect::{eval_box, solve_rect_iv, Query, RectOptions, RectProblem};
 use crate::solve::{solve_square, solve_triangle, solve_uni, Box2, Solution, SolveOptions, UniOptions};
 use inari::Interval;
 
 /// Every candidate of `patch` for the point `p`, in the patch's parameters.
-pub(super) fn candidates(patch: &Patch, p: [f64; 3], opts: &SolveOptions) -> Result<Vec<Candidate>> {
+pub(super) fn candidates(patch: &Prepared<'_>, p: [f64; 3], opts: &SolveOptions) -> Result<Vec<Candidate>> {
     match patch {
-        Patch::Triangle(t) => triangle(t, p, opts),
-        Patch::Tensor(t) => tensor(t, p, opts, f64::INFINITY),
-        Patch::Bspline(s) => bspline(s, p, opts),
+        Prepared::Triangle(t) => triangle(t, p, opts),
+        Prepared::Tensor(t, prep) => tensor(t, prep.as_deref(), p, opts, f64::INFINITY),
+        Prepared::Bspline(s, preps) => bspline(s, preps, p, opts),
     }
 }
 
+/// A patch with what its points share, computed once ([`TensorPrep`] for
+/// each tensor patch or B-spline piece whose system the box solver takes).
+pub(crate) enum Prepared<'a> {
+    Triangle(&'a TriPatch),
+    Tensor(&'a TensorPatch, Option<Box<TensorPrep>>),
+    Bspline(&'a BsplineSurface, Vec<Option<TensorPrep>>),
+}
+
+impl<'a> Prepared<'a> {
+    pub(crate) fn new(patch: &'a Patch) -> Self {
+        match patch {
+            Patch::Triangle(t) => Prepared::Triangle(t),
+            Patch::Tensor(t) => Prepared::Tensor(t, TensorPrep::new(t).map(Box::new)),
+            Patch::Bspline(s) => Prepared::Bspline(s, s.pieces().iter().map(|p| TensorPrep::new(p.patch())).collect()),
+        }
+    }
+}
+
+/// A tensor patch: the prepared path, or the general one when it declines.
+fn tensor(
+    t: &TensorPatch,
+    prep: Option<&TensorPrep>,
+    p: [f64; 3],
+    opts: &SolveOptions,
+    outer: f64,
+) -> Result<Vec<Candidate>> {
+    if let Some(prep) = prep {
+        if let Some(c) = super::tensor::candidates(prep, t, p, opts, outer)? {
+            return Ok(c);
+        }
+    }
+    tensor_general(t, p, opts, outer)
+}
+
 /// Bounds of the squared distance `D` over boxes and at points.
-trait Dist {
+pub(super) trait Dist {
     /// A lower bound of `D` over the box (one evaluation).
     fn lower(&self, b: &Box2) -> f64;
     /// An upper bound of `D` at `(u, v)`.
@@ -49,66 +81,9 @@ impl<P: NetBb<Interval>> Dist for NetDist<'_, P> {
     }
 }
 
-/// `D = Σ_k ((X_k − p_k W)/W)²` from the homogeneous net as [`IvPoly`]s,
-/// each coordinate enclosed by [`eval_box`] and squared: tight at points
-/// (no cancellation in an expanded `D`, so an on-surface point keeps a
-/// distance enclosure near `ε` rather than `√ε`) and cheap over boxes.
-struct IvNetDist<'a> {
-    /// `X_k − p_k W`, `k = 0, 1, 2`.
-    diff: &'a [IvPoly; 3],
-    /// `W`, absent for a polynomial patch.
-    w: Option<&'a IvPoly>,
-}
-
-/// `x²` as an enclosure (never below 0).
-fn iv_sqr(x: Iv) -> Iv {
-    if x.lo >= 0.0 {
-        x.mul(x)
-    } else if x.hi <= 0.0 {
-        let y = Iv::new(-x.hi, -x.lo);
-        y.mul(y)
-    } else {
-        let a = x.lo.abs().max(x.hi);
-        Iv::new(0.0, Iv::point(a).mul(Iv::point(a)).hi)
-    }
-}
-
-impl IvNetDist<'_> {
-    fn over(&self, u: [f64; 2], v: [f64; 2]) -> Iv {
-        let w = self.w.map(|w| eval_box(&w.c, w.m, w.n, u, v));
-        self.diff.iter().fold(Iv::point(0.0), |acc, d| {
-            let e = eval_box(&d.c, d.m, d.n, u, v);
-            let e = match w {
-                Some(w) => e.div(w),
-                None => e,
-            };
-            acc.add(iv_sqr(e))
-        })
-    }
-}
-
-impl Dist for IvNetDist<'_> {
-    fn lower(&self, b: &Box2) -> f64 {
-        let d = self.over(b.u, b.v);
-        if d.lo.is_nan() {
-            0.0
-        } else {
-            d.lo.max(0.0)
-        }
-    }
-    fn upper(&self, u: f64, v: f64) -> f64 {
-        let d = self.over([u, u], [v, v]);
-        if d.hi.is_nan() {
-            f64::INFINITY
-        } else {
-            d.hi
-        }
-    }
-}
-
 /// A candidate region with its bounds; `at` is moved into the closed domain
 /// by `clamp`.
-fn candidate(
+pub(super) fn candidate(
     dist: &dyn Dist,
     bx: Box2,
     kind: FootKind,
@@ -127,7 +102,7 @@ fn candidate(
 
 /// The interior candidates of a solve: certified roots, undecided regions,
 /// leftovers.
-fn regions(sol: &Solution) -> impl Iterator<Item = (Box2, bool)> + '_ {
+pub(super) fn regions(sol: &Solution) -> impl Iterator<Item = (Box2, bool)> + '_ {
     sol.roots
         .iter()
         .map(|r| (r.bx, true))
@@ -135,7 +110,7 @@ fn regions(sol: &Solution) -> impl Iterator<Item = (Box2, bool)> + '_ {
         .chain(sol.leftovers.iter().map(|l| (l.bx, false)))
 }
 
-fn clamp_square([u, v]: [f64; 2]) -> [f64; 2] {
+pub(super) fn clamp_square([u, v]: [f64; 2]) -> [f64; 2] {
     [u.clamp(0.0, 1.0), v.clamp(0.0, 1.0)]
 }
 
@@ -159,74 +134,6 @@ fn refine(dist: &dyn Dist, cands: &mut [Candidate], outer: f64) {
     for c in cands.iter_mut().filter(|c| c.d[0] < best) {
         c.d[0] = c.d[0].max(lower_bound(&|b: &Box2| dist.lower(b), c.bx, best));
     }
-}
-
-/// The degrees of the box solver's stack-allocated nets.
-const RECT_MAX_DEGREE: usize = 23;
-
-fn tensor(t: &TensorPatch, p: [f64; 3], opts: &SolveOptions, outer: f64) -> Result<Vec<Candidate>> {
-    let (m, n) = t.degree();
-    let rational = t.weights().is_some();
-    let (big_m, big_n) = if rational { (3 * m, 3 * n) } else { (2 * m, 2 * n) };
-    if big_m > RECT_MAX_DEGREE || big_n > RECT_MAX_DEGREE {
-        return tensor_general(t, p, opts, outer);
-    }
-    // The homogeneous net in Iv, row-major.
-    let col = |k: usize| IvPoly::new(m, n, t.ivnet().iter().map(|h| h[k]).collect());
-    let x = [col(0), col(1), col(2)];
-    let w = col(3);
-    let diff: [IvPoly; 3] = std::array::from_fn(|k| {
-        if rational {
-            x[k].sub(&w.map(|c| c.mul(Iv::point(p[k]))))
-        } else {
-            x[k].map(|c| c.sub(Iv::point(p[k])))
-        }
-    });
-    let dot = |a: &[IvPoly; 3], b: &[IvPoly; 3]| a[0].mul(&b[0]).add(&a[1].mul(&b[1])).add(&a[2].mul(&b[2]));
-    let (f, g, num, den) = if rational {
-        let (wu, wv) = (w.d_u(), w.d_v());
-        let tu: [IvPoly; 3] = std::array::from_fn(|k| x[k].d_u().mul(&w).sub(&x[k].mul(&wu)));
-        let tv: [IvPoly; 3] = std::array::from_fn(|k| x[k].d_v().mul(&w).sub(&x[k].mul(&wv)));
-        (dot(&diff, &tu), dot(&diff, &tv), dot(&diff, &diff), Some(w.mul(&w)))
-    } else {
-        let xu: [IvPoly; 3] = std::array::from_fn(|k| x[k].d_u());
-        let xv: [IvPoly; 3] = std::array::from_fn(|k| x[k].d_v());
-        (dot(&diff, &xu), dot(&diff, &xv), dot(&diff, &diff), None)
-    };
-    let lift = |q: &IvPoly| q.elevate(big_m, big_n);
-    let (f, g, num, den) = (lift(&f), lift(&g), lift(&num), den.as_ref().map(lift));
-    let dist = IvNetDist {
-        diff: &diff,
-        w: rational.then_some(&w),
-    };
-    let mut out = Vec::new();
-    let unit = [[Iv::point(0.0), Iv::point(1.0)]; 2];
-    let problem = RectProblem {
-        m: big_m,
-        n: big_n,
-        domain: unit,
-        f: f.c.clone(),
-        g: g.c.clone(),
-        num: Some(num.c.clone()),
-        den: den.as_ref().map(|d| d.c.clone()),
-    };
-    let ropts = RectOptions {
-        eps: opts.eps.min(0.5),
-        max_boxes: opts.max_boxes,
-        query: Query::Nearest,
-        ..RectOptions::default()
-    };
-    match solve_rect_iv(problem, &ropts) {
-        Ok(r) if r.solution.complete => {
-            out.extend(regions(&r.solution).map(|(bx, c)| candidate(&dist, bx, FootKind::Interior, c, clamp_square)))
-        }
-        // Out of budget or a vanishing equation: the general route decides.
-        _ => return tensor_general(t, p, opts, outer),
-    }
-    let net = t.inet();
-    tensor_edges(net, p, rational, opts, &dist, &mut out)?;
-    refine(&dist, &mut out, outer);
-    Ok(out)
 }
 
 /// The four edges and corners of a tensor patch, as candidates.
@@ -410,7 +317,12 @@ fn edge(
 /// representative point is chosen in knot parameters and `D` bounded over
 /// the interval enclosure of its local coordinates, so the bound holds at the
 /// reported point itself.
-fn bspline(s: &BsplineSurface, p: [f64; 3], opts: &SolveOptions) -> Result<Vec<Candidate>> {
+fn bspline(
+    s: &BsplineSurface,
+    preps: &[Option<TensorPrep>],
+    p: [f64; 3],
+    opts: &SolveOptions,
+) -> Result<Vec<Candidate>> {
     let unit = Box2::new([0.0, 1.0], [0.0, 1.0]);
     let mut order: Vec<(f64, usize)> = s
         .pieces()
@@ -426,7 +338,7 @@ fn bspline(s: &BsplineSurface, p: [f64; 3], opts: &SolveOptions) -> Result<Vec<C
             break;
         }
         let piece = &s.pieces()[k];
-        let local = tensor(piece.patch(), p, opts, best)?;
+        let local = tensor(piece.patch(), preps[k].as_ref(), p, opts, best)?;
         let net = piece.patch().inet();
         let (ur, vr) = (piece.u_range(), piece.v_range());
         let to_knots = |range: [f64; 2], b: [f64; 2]| {

@@ -77,6 +77,13 @@ pub struct RectOptions {
     pub key_min: Option<[f64; 2]>,
     /// The clipping method.
     pub clip: RectClip,
+    /// [`Query::Nearest`] only: an upper bound of the objective's minimum
+    /// known from elsewhere (a point where the caller's objective was
+    /// enclosed). Boxes whose objective is provably above it are dropped
+    /// from the start, as if a root with that bound had been certified;
+    /// `complete = true` then speaks of the roots whose objective is at most
+    /// the smaller of the two bounds.
+    pub key_max: Option<f64>,
 }
 
 impl Default for RectOptions {
@@ -87,6 +94,7 @@ impl Default for RectOptions {
             query: Query::All,
             key_min: None,
             clip: RectClip::default(),
+            key_max: None,
         }
     }
 }
@@ -308,7 +316,10 @@ pub(crate) fn solve_rect_iv(p: RectProblem, opts: &RectOptions) -> Result<RectSo
         undecided: Vec::new(),
         problem: p,
         global: None,
-        best: f64::INFINITY,
+        best: match opts.query {
+            Query::Nearest => opts.key_max.filter(|k| !k.is_nan()).unwrap_or(f64::INFINITY),
+            _ => f64::INFINITY,
+        },
         stopped_early: false,
         edge_strips: Vec::new(),
     };
