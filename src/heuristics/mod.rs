@@ -33,6 +33,7 @@
 pub mod experiment;
 mod first_order;
 mod halley;
+pub mod inversion;
 mod iteration;
 mod jet;
 mod linalg;
