@@ -360,7 +360,7 @@ fn propose(t: &TensorPatch, grid: &[(f64, f64, DVec3)], p: [f64; 3]) -> [f64; 2]
         .map(|&(u, v, s)| (u, v, (s - p).length_squared()))
         .fold((0.0, 0.0, f64::INFINITY), |a, b| if b.2 < a.2 { b } else { a });
     let (mut s, mut su, mut sv) = t.frame(u, v);
-    for _ in 0..8 {
+    for _ in 0..12 {
         let r = s - p;
         let (a, b, c) = (su.dot(su), su.dot(sv), sv.dot(sv));
         let (gu, gv) = (su.dot(r), sv.dot(r));
@@ -368,10 +368,19 @@ fn propose(t: &TensorPatch, grid: &[(f64, f64, DVec3)], p: [f64; 3]) -> [f64; 2]
         if det.is_nan() || det.abs() <= 1e-300 {
             break;
         }
-        let (du, dv) = ((-c * gu + b * gv) / det, (b * gu - a * gv) / det);
-        let (u1, v1) = ((u + du).clamp(0.0, 1.0), (v + dv).clamp(0.0, 1.0));
-        let f1 = t.frame(u1, v1);
-        let d1 = (f1.0 - p).length_squared();
+        let (mut du, mut dv) = ((-c * gu + b * gv) / det, (b * gu - a * gv) / det);
+        // Backtracking: halve the step until the distance decreases.
+        let mut tries = 0;
+        let (u1, v1, f1, d1) = loop {
+            let (u1, v1) = ((u + du).clamp(0.0, 1.0), (v + dv).clamp(0.0, 1.0));
+            let f1 = t.frame(u1, v1);
+            let d1 = (f1.0 - p).length_squared();
+            tries += 1;
+            if d1 <= d0 || tries == 12 {
+                break (u1, v1, f1, d1);
+            }
+            (du, dv) = (0.5 * du, 0.5 * dv);
+        };
         if d1.is_nan() || d1 > d0 {
             break;
         }

@@ -195,12 +195,16 @@ pub(super) fn second_order(patch: &Patch, p: DVec3, start: [f64; 2], opts: &InvO
                 iterations: k + 1,
             };
         };
-        let next = clamp([uv[0] + step[0], uv[1] + step[1]]);
+        let raw = [uv[0] + step[0], uv[1] + step[1]];
+        let next = clamp(raw);
         let moved = (next[0] - uv[0]).abs() + (next[1] - uv[1]).abs();
+        let clamped = next != raw;
         uv = next;
         if moved < 1e-14 {
+            // Stationary: a critical point of the distance if the step was
+            // not cut by the square; stuck against an edge otherwise.
             return Outcome {
-                end: Ok(uv),
+                end: if clamped { Err(Failure::StuckAtEdge) } else { Ok(uv) },
                 iterations: k + 1,
             };
         }

@@ -47,12 +47,16 @@ pub(super) fn newton(patch: &Patch, p: DVec3, start: [f64; 2], opts: &InvOptions
         }
         let du = (-f * c + g * b) / det;
         let dv = (-g * a + f * b) / det;
-        let next = clamp([uv[0] + du, uv[1] + dv]);
+        let raw = [uv[0] + du, uv[1] + dv];
+        let next = clamp(raw);
         let moved = (next[0] - uv[0]).abs() + (next[1] - uv[1]).abs();
+        let clamped = next != raw;
         uv = next;
         if moved < 1e-14 {
+            // Stationary: a critical point of the distance if the step was
+            // not cut by the square; stuck against an edge otherwise.
             return Outcome {
-                end: Ok(uv),
+                end: if clamped { Err(Failure::StuckAtEdge) } else { Ok(uv) },
                 iterations: k + 1,
             };
         }
