@@ -259,7 +259,8 @@ pub(super) fn candidates(
         }
         _ => return Ok(None),
     }
-    edges.candidates(opts, &dist, best(&out), &mut out)?;
+    let curves = edge_curves(&dist.diff, dist.w);
+    edges.candidates(curves, opts, &dist, best(&out), &mut out)?;
     // The proposal was only a bound: the minimum lies in one of the other
     // regions (every region farther than the bound was pruned, none nearer),
     // whose own upper bounds then bound it too.
@@ -268,8 +269,86 @@ pub(super) fn candidates(
     Ok(Some(out))
 }
 
-/// Pieces of an edge bounded before its solve (to skip far edges).
-const EDGE_PIECES: usize = 8;
+/// Halvings of an edge curve tried before its solve (to skip far edges).
+const EDGE_DEPTH: u32 = 3;
+
+/// An edge of the patch as the curves `X_k − p_k W` and `W` (Bernstein
+/// coefficients, the patch's boundary rows).
+type EdgeCurve = ([Vec<Iv>; 3], Option<Vec<Iv>>);
+
+/// The four edges in [`EdgeRows`]' order: `v = 0`, `v = 1`, `u = 0`, `u = 1`.
+fn edge_curves(diff: &[IvPoly; 3], w: Option<&IvPoly>) -> [EdgeCurve; 4] {
+    let pick = |q: &IvPoly, e: usize| -> Vec<Iv> {
+        let (m, n) = (q.m, q.n);
+        match e {
+            0 => (0..=m).map(|i| q.c[i * (n + 1)]).collect(),
+            1 => (0..=m).map(|i| q.c[i * (n + 1) + n]).collect(),
+            2 => q.c[..=n].to_vec(),
+            _ => q.c[m * (n + 1)..].to_vec(),
+        }
+    };
+    std::array::from_fn(|e| (std::array::from_fn(|k| pick(&diff[k], e)), w.map(|w| pick(w, e))))
+}
+
+/// `D > best` on the whole edge, proven from the convex hull of the
+/// coefficients (each coordinate of `(X − P W)/W` lies between its
+/// coefficients' extremes divided by `W`'s), the curve halved by de
+/// Casteljau up to `depth` times where that does not suffice.
+fn edge_far((diff, w): EdgeCurve, best: f64, depth: u32) -> bool {
+    let hull = |c: &[Iv]| {
+        c.iter()
+            .fold(Iv::new(f64::INFINITY, f64::NEG_INFINITY), |a, x| a.hull(*x))
+    };
+    let w_max = w.as_ref().map_or(1.0, |w| hull(w).hi);
+    let lower = diff.iter().fold(Iv::point(0.0), |acc, c| {
+        let h = hull(c);
+        let gap = if h.lo > 0.0 {
+            h.lo
+        } else if h.hi < 0.0 {
+            -h.hi
+        } else {
+            0.0
+        };
+        acc.add(Iv::point(gap).mul(Iv::point(gap)))
+    });
+    // lower / w_max², rounded down (w_max ≥ W > 0 on the edge).
+    let d = lower.div(Iv::point(w_max).mul(Iv::point(w_max)));
+    if d.lo > best {
+        return true;
+    }
+    if depth == 0 || d.lo.is_nan() {
+        return false;
+    }
+    let halves = |c: &[Iv]| -> (Vec<Iv>, Vec<Iv>) {
+        let k = c.len();
+        let mut work = c.to_vec();
+        let (mut left, mut right) = (vec![Iv::point(0.0); k], vec![Iv::point(0.0); k]);
+        for r in 0..k {
+            left[r] = work[0];
+            right[k - 1 - r] = work[k - 1 - r];
+            for i in 0..k - 1 - r {
+                work[i] = Iv::lerp(work[i], work[i + 1], 0.5);
+            }
+        }
+        (left, right)
+    };
+    let split = |c: &[Vec<Iv>; 3]| {
+        let h = [halves(&c[0]), halves(&c[1]), halves(&c[2])];
+        (
+            [h[0].0.clone(), h[1].0.clone(), h[2].0.clone()],
+            [h[0].1.clone(), h[1].1.clone(), h[2].1.clone()],
+        )
+    };
+    let (dl, dr) = split(&diff);
+    let (wl, wr) = match &w {
+        Some(w) => {
+            let (a, b) = halves(w);
+            (Some(a), Some(b))
+        }
+        None => (None, None),
+    };
+    edge_far((dl, wl), best, depth - 1) && edge_far((dr, wr), best, depth - 1)
+}
 
 /// The edge functions: `F` on `v = 0`, `v = 1` (curves in `u`), `G` on
 /// `u = 0`, `u = 1` (curves in `v`).
@@ -296,9 +375,16 @@ impl EdgeRows {
     /// whole edge one undecided candidate.
     /// Edges whose distance is provably above `best` (an upper bound of the
     /// minimum) are skipped.
-    fn candidates(&self, opts: &SolveOptions, dist: &dyn Dist, best: f64, out: &mut Vec<Candidate>) -> Result<()> {
+    fn candidates(
+        &self,
+        curves: [EdgeCurve; 4],
+        opts: &SolveOptions,
+        dist: &dyn Dist,
+        best: f64,
+        out: &mut Vec<Candidate>,
+    ) -> Result<()> {
         let uopts = UniOptions::default().with_eps(opts.eps).with_max_boxes(opts.max_boxes);
-        for (coeffs, along_u, fixed) in &self.rows {
+        for ((coeffs, along_u, fixed), curve) in self.rows.iter().zip(curves) {
             let place = |s: [f64; 2]| {
                 if *along_u {
                     Box2::new(s, [*fixed, *fixed])
@@ -306,10 +392,7 @@ impl EdgeRows {
                     Box2::new([*fixed, *fixed], s)
                 }
             };
-            if (0..EDGE_PIECES).all(|k| {
-                let s = [k as f64 / EDGE_PIECES as f64, (k + 1) as f64 / EDGE_PIECES as f64];
-                dist.lower(&place(s)) > best
-            }) {
+            if edge_far(curve, best, EDGE_DEPTH) {
                 continue;
             }
             let mut push = |s: [f64; 2], certified: bool| {

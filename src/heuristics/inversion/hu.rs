@@ -204,7 +204,13 @@ pub(super) fn second_order(patch: &Patch, p: DVec3, start: [f64; 2], opts: &InvO
             // Stationary: a critical point of the distance if the step was
             // not cut by the square; stuck against an edge otherwise.
             return Outcome {
-                end: if clamped { Err(Failure::StuckAtEdge) } else { Ok(uv) },
+                end: if clamped {
+                    Err(Failure::StuckAtEdge)
+                } else if opts.inversion {
+                    Err(Failure::Stationary)
+                } else {
+                    Ok(uv)
+                },
                 iterations: k + 1,
             };
         }

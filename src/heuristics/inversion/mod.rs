@@ -39,9 +39,12 @@
 //!   for Wang's segments, and for Hu's iteration on each piece.
 //! * A step leaving the parameter square is clamped to it (Piegl & Tiller's
 //!   rule for open surfaces); the paper does not say.
-//! * Projection of points off the surface: the iterations also stop when a
-//!   Newton or Hu step is below `10⁻¹⁴` in the parameters (a critical point
-//!   of the distance), since Eq. (29) can never hold there.
+//! * A Newton or Hu step below `10⁻¹⁴` in the parameters is stationary (a
+//!   critical point of the distance): a failure for inversion (the paper
+//!   counts only Eq. (29) as success), the answer for projection of points
+//!   off the surface ([`InvOptions::for_projection`]), where Eq. (29) can
+//!   never hold. The referee's wrong feet come from the latter, or from
+//!   Wang's tracing, which stops where a segment makes no progress.
 
 mod hu;
 mod newton;
@@ -96,6 +99,12 @@ pub struct InvOptions {
     pub start: [f64; 2],
     /// Iteration cap (Newton steps, Wang's segments, Hu's steps per piece).
     pub max_iterations: usize,
+    /// Inversion (the paper's setting, default): only Eq. (29) is success,
+    /// so an iteration that becomes stationary away from `P` has failed
+    /// ([`Failure::Stationary`]; Hu then tries the next piece). `false`
+    /// (projection of points off the surface): a stationary point is
+    /// returned, for the referee to judge.
+    pub inversion: bool,
 }
 
 impl Default for InvOptions {
@@ -106,11 +115,18 @@ impl Default for InvOptions {
             dt: 0.1,
             start: [0.0, 0.0],
             max_iterations: 200,
+            inversion: true,
         }
     }
 }
 
 impl InvOptions {
+    /// The same options for projection (`inversion = false`).
+    pub fn for_projection(mut self) -> Self {
+        self.inversion = false;
+        self
+    }
+
     /// The same options with another RK4 step `Δt`.
     pub fn with_dt(mut self, dt: f64) -> Self {
         self.dt = dt;
@@ -138,6 +154,9 @@ pub enum Failure {
     /// The steps point out of the square and clamping leaves the iterate
     /// where it is (without Eq. (29)).
     StuckAtEdge,
+    /// Inversion: the iteration became stationary (a critical point of the
+    /// distance) without Eq. (29).
+    Stationary,
     /// A value was not finite.
     NonFinite,
 }
@@ -150,6 +169,7 @@ impl Failure {
             Failure::NoConvergence => "no_convergence",
             Failure::NotInAnyPiece => "not_in_any_piece",
             Failure::StuckAtEdge => "stuck_at_edge",
+            Failure::Stationary => "stationary",
             Failure::NonFinite => "non_finite",
         }
     }

@@ -324,6 +324,7 @@ pub(crate) fn solve_rect_iv(p: RectProblem, opts: &RectOptions) -> Result<RectSo
         edge_strips: Vec::new(),
     };
     let mut first = Node {
+        key: None,
         c: buf,
         bx: domain,
         id: run.push_trace(u32::MAX, domain.map(|[lo, hi]| [lo.lo, hi.hi])),
@@ -400,8 +401,12 @@ impl Runner {
                 Step::Split(a, b) => {
                     // Nearest: the child nearer in the objective first, so
                     // that a near root is certified early and prunes the rest.
-                    let swap =
-                        self.opts.query == Query::Nearest && self.key_over(b.ibox()).0 < self.key_over(a.ibox()).0;
+                    let (mut a, mut b) = (a, b);
+                    if self.opts.query == Query::Nearest {
+                        a.key = Some(self.key_over(a.ibox()).0);
+                        b.key = Some(self.key_over(b.ibox()).0);
+                    }
+                    let swap = self.opts.query == Query::Nearest && b.key < a.key;
                     let (a, b) = if swap { (b, a) } else { (a, b) };
                     queue.push(b);
                     queue.push(a);
@@ -421,7 +426,10 @@ impl Runner {
         }
         // Nearest: once a root is certified, a box whose objective is
         // provably above it cannot hold a nearer root.
-        if self.opts.query == Query::Nearest && self.best < f64::INFINITY && self.key_over(node.ibox()).0 > self.best {
+        if self.opts.query == Query::Nearest
+            && self.best < f64::INFINITY
+            && node.key.unwrap_or_else(|| self.key_over(node.ibox()).0) > self.best
+        {
             self.stats.sign_exclusions += 1;
             return Step::Done;
         }
