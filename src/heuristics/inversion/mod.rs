@@ -379,4 +379,24 @@ mod tests {
             Verdict::Failed(Failure::Singular)
         );
     }
+
+    /// Projection mode: from a point off the surface, Newton from the
+    /// nearest grid point stops at a critical point of the distance (Eq.
+    /// (29) cannot hold) and the referee judges it; inversion mode calls
+    /// the same stop a failure.
+    #[test]
+    fn projection_mode_returns_stationary_points() {
+        let patch = table4();
+        let p = patch.eval(0.4, 0.6) + DVec3::new(0.0, 0.0, 0.3);
+        let cert = project(&patch, p, &ProjectOptions::default()).unwrap();
+        let opts = InvOptions::default().for_projection();
+        let prep = Prepared::new(&patch, &opts);
+        let out = invert(Method::GridNewton, &prep, p, &opts);
+        assert!(out.end.is_ok(), "{out:?}");
+        let v = referee(&patch, p, &out, &cert, 1e-9);
+        assert!(matches!(v, Verdict::Correct | Verdict::WrongFoot), "{v:?}");
+        let inv = InvOptions::default();
+        let out = invert(Method::GridNewton, &Prepared::new(&patch, &inv), p, &inv);
+        assert_eq!(out.end, Err(Failure::Stationary));
+    }
 }
