@@ -6,6 +6,7 @@ mod crosscheck;
 mod heuristics;
 mod input;
 mod json;
+mod project;
 mod ray;
 mod solve;
 mod ssi;
@@ -36,6 +37,8 @@ enum Command {
     Ray(ray::RayArgs),
     /// Referee claimed ray hits (a fast solver's) against the certified hits.
     Crosscheck(crosscheck::CrosscheckArgs),
+    /// The certified closest point of a patch to each of many points.
+    Project(project::ProjectArgs),
     /// Every branch of the intersection curve of two patches, each point certified.
     Ssi(ssi::SsiArgs),
     /// Print the exact Bernstein–Bézier coefficients of a polynomial in u, v.
@@ -57,7 +60,7 @@ pub fn main() -> ExitCode {
         }
         Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
             eprintln!(
-                "rootclip: missing subcommand (bernstein, crosscheck, heuristics, ray, solve, ssi, tables); see rootclip --help"
+                "rootclip: missing subcommand (bernstein, crosscheck, heuristics, project, ray, solve, ssi, tables); see rootclip --help"
             );
             return ExitCode::from(2);
         }
@@ -79,6 +82,7 @@ pub fn main() -> ExitCode {
         Command::Tables(args) => tables::run(&args),
         Command::Ray(args) => ray::run(&args),
         Command::Crosscheck(args) => crosscheck::run(&args),
+        Command::Project(args) => project::run(&args),
         Command::Heuristics(args) => heuristics::run(&args),
         Command::Solve(args) => solve::run(&args),
         Command::Ssi(args) => ssi::run(&args),
