@@ -139,3 +139,49 @@ fn secondary_rays_from_the_surface_end() {
     }
     assert!(at_zero > 0, "no ray started exactly on the surface");
 }
+
+/// Inputs whose numbers would come out non-finite (printed as JSON `null`)
+/// are rejected with a typed error: a direction subnormal in every
+/// component (`t` overflows), a subnormal weight (the points are 0/0).
+#[test]
+fn subnormal_directions_and_weights_are_typed_errors() {
+    use rootclip::ray::TensorPatch;
+    use rootclip::Error;
+    let r = Ray::new(DVec3::new(0.5, 0.5, 1.0), DVec3::new(0.0, 0.0, -1e-320));
+    assert!(matches!(r, Err(Error::NonFinite(_))), "{r:?}");
+    assert!(Ray::new(DVec3::ZERO, DVec3::new(0.0, 0.0, -1e-300)).is_ok());
+    let pts = vec![
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(0.0, 1.0, 0.0),
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(1.0, 1.0, 0.0),
+    ];
+    let p = TensorPatch::new(1, 1, pts.clone(), Some(vec![1e-320; 4]));
+    assert!(matches!(p, Err(Error::NonFinite(_))), "{p:?}");
+    assert!(TensorPatch::new(1, 1, pts, Some(vec![1e-300; 4])).is_ok());
+}
+
+/// One rule for `eps` on every route: positive and finite. An `eps` of 1 or
+/// more is valid on the box route as on the triangles (it stops early, still
+/// soundly: the root is certified or left in a cluster).
+#[test]
+fn eps_rule_is_the_same_on_every_route() {
+    use rootclip::poly::parse_polynomial;
+    use rootclip::solve::{solve, Domain, SolveOptions};
+    let f = parse_polynomial("u - 1/3").unwrap();
+    let g = parse_polynomial("v - 1/4").unwrap();
+    for route in ALL_ROUTES {
+        for eps in [1e-12, 1.0, 10.0] {
+            let opts = SolveOptions::default().with_eps(eps).with_square_route(route);
+            let sol = solve(&f, &g, Domain::Square, &opts).unwrap_or_else(|e| panic!("{route:?} eps {eps}: {e}"));
+            assert!(
+                sol.complete && sol.roots.len() + sol.clusters.len() == 1,
+                "{route:?} eps {eps}: {sol:?}"
+            );
+        }
+        for eps in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            let opts = SolveOptions::default().with_eps(eps).with_square_route(route);
+            assert!(solve(&f, &g, Domain::Square, &opts).is_err(), "{route:?} eps {eps}");
+        }
+    }
+}

@@ -99,7 +99,11 @@ RAYS = [
     ("ray quadratic triangle, origin on it", None, {"type": "triangle", "degree": 2, "points": [[0, 0, 0], [0.5, 0, 0.5], [1, 0, 0], [0, 0.5, 0.5], [0.5, 0.5, 1], [0, 1, 0]]}, None, "0.3,-0.2,1", 1),
 ]
 
+EXTRA = []
+
 def run(cmd, timeout):
+    if cmd[1] == "solve" and "square" in cmd:
+        cmd = cmd + EXTRA
     t0 = time.perf_counter()
     try:
         p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
@@ -121,6 +125,8 @@ def main():
     while i < len(args):
         if args[i] == "--timeout":
             timeout = float(args[i + 1]); i += 2
+        elif args[i] == "--route":
+            EXTRA.extend(["--square-route", args[i + 1]]); i += 2
         elif args[i] == "--only":
             only.append(args[i + 1]); i += 2
         else:

@@ -229,8 +229,14 @@ pub(crate) struct RectProblem {
 
 /// [`solve_rect`] on [`Iv`] coefficients (the ray front end's fast path).
 pub(crate) fn solve_rect_iv(p: RectProblem, opts: &RectOptions) -> Result<RectSolution> {
-    if !(opts.eps > 0.0 && opts.eps < 1.0) {
-        return Err(Error::Shape(format!("eps must lie in (0, 1), got {}", opts.eps)));
+    // The rule of `SolveOptions::validate`, on every route: an `eps` of 1
+    // or more is valid and stops at the first box (a cluster, or a root
+    // Krawczyk certifies there).
+    if !(opts.eps.is_finite() && opts.eps > 0.0) {
+        return Err(Error::InvalidOption(format!(
+            "eps must be a positive finite number, got {}",
+            opts.eps
+        )));
     }
     let (m, n) = (p.m, p.n);
     let len = (m + 1) * (n + 1);
