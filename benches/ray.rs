@@ -10,7 +10,9 @@
 //! * `ray/triangles-all`: the same patch as two degree-6 triangles (hybrid
 //!   clipping), the route the rectangle one is measured against;
 //! * `ray/newton`: plain Newton–Raphson from the patch centre on the same
-//!   rays (no proof; it misses hits — `dev`'s `ray_bench` counts them).
+//!   rays (`heuristics::iterate` with the default options; no proof, it
+//!   misses hits — `dev`'s `ray_bench` counts them; `benches/heuristics.rs`
+//!   has all four iterations).
 //!
 //! Divide the reported time by 256 for µs per ray. Whole-process batch
 //! timings (10,000 rays, rayon): `cargo run --release -p rootclip-dev --bin ray_bench`.
@@ -18,7 +20,7 @@
 //! `cargo bench --bench ray` takes about a minute.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use rootclip::heuristics::newton_ray_patch;
+use rootclip::heuristics::{iterate, IterOptions, Iteration};
 use rootclip::internals::aimed_rays;
 use rootclip::ray::{intersect, Patch, PatchSpec, Query, Ray, RayOptions};
 use rootclip::solve::SquareRoute;
@@ -58,10 +60,11 @@ fn bench(c: &mut Criterion) {
             })
         });
     }
+    let iter_opts = IterOptions::default();
     g.bench_function("newton", |b| {
         b.iter(|| {
             for r in &rays {
-                black_box(newton_ray_patch(&patch, r, (0.5, 0.5), 1e-12, 30));
+                black_box(iterate(Iteration::Newton, &patch, r, [0.5, 0.5], &iter_opts));
             }
         })
     });

@@ -47,6 +47,7 @@ pub mod triangle {
     pub use crate::poly::triangle::*;
 }
 
+pub use crate::heuristics::experiment::at_scale_rays;
 pub use crate::ray::sample::{aimed_rays, secondary_rays, surface_aimed_rays};
 pub use crate::rng::Rng;
 

@@ -3,6 +3,7 @@
 
 mod bernstein;
 mod crosscheck;
+mod heuristics;
 mod input;
 mod json;
 mod ray;
@@ -36,6 +37,8 @@ enum Command {
     Crosscheck(crosscheck::CrosscheckArgs),
     /// Print the exact Bernstein–Bézier coefficients of a polynomial in u, v.
     Bernstein(bernstein::BernsteinArgs),
+    /// Seed 000's experiment: four ray–patch iterations from 121 starts, each end point refereed.
+    Heuristics(heuristics::HeuristicsArgs),
 }
 
 /// Runs the command line: parses the arguments, runs the command, prints its
@@ -50,7 +53,7 @@ pub fn main() -> ExitCode {
             return ExitCode::SUCCESS;
         }
         Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
-            eprintln!("rootclip: missing subcommand (bernstein, crosscheck, ray, solve, tables); see rootclip --help");
+            eprintln!("rootclip: missing subcommand (bernstein, crosscheck, heuristics, ray, solve, tables); see rootclip --help");
             return ExitCode::from(2);
         }
         Err(e) => {
@@ -71,6 +74,7 @@ pub fn main() -> ExitCode {
         Command::Tables(args) => tables::run(&args),
         Command::Ray(args) => ray::run(&args),
         Command::Crosscheck(args) => crosscheck::run(&args),
+        Command::Heuristics(args) => heuristics::run(&args),
         Command::Solve(args) => solve::run(&args),
     };
     match out {

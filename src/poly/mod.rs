@@ -33,3 +33,4 @@ pub use triangle::{TriBezier, TriReduction};
 pub use univariate::{UniBezier, UniReduction};
 
 pub(crate) use ball::{Reduced, TriBall, TriBallDD};
+pub(crate) use univariate::{eval_coeffs, split_coeffs};

@@ -41,7 +41,7 @@ pub fn rational_to_f64(q: &BigRational) -> f64 {
 /// assert_eq!(x.sup().next_down(), x.inf());
 /// ```
 pub fn rational_to_interval(q: &BigRational) -> Interval {
-    if let Some(x) = small_rational_to_interval(q) {
+    if let Some(x) = small_rational_to_interval(q).or_else(|| dyadic_to_interval(q)) {
         return x;
     }
     let approx = rational_to_f64(q);
@@ -99,6 +99,46 @@ fn small_rational_to_interval(q: &BigRational) -> Option<Interval> {
         interval(x, x.next_up())
     } else {
         interval(x.next_down(), x)
+    })
+}
+
+/// [`rational_to_interval`] for a dyadic `q = n / 2^k` whose enclosure has
+/// normal float endpoints (exact sums and products of floats, the common
+/// exact input), with integer operations only: the 53 leading bits `m` of
+/// `|n|` give `m·2^e ≤ |q| < (m + 1)·2^e`, both floats, equal bounds when
+/// the dropped bits are zero. `None` for other rationals (and near the
+/// subnormal and overflow ranges).
+fn dyadic_to_interval(q: &BigRational) -> Option<Interval> {
+    let d = q.denom();
+    let k = d.trailing_zeros()?;
+    if d.bits() != k + 1 {
+        return None; // not a power of two
+    }
+    let n = q.numer().magnitude();
+    let bits = n.bits();
+    if bits == 0 {
+        return Some(point(0.0));
+    }
+    // |q| = m·2^e + rest, m with exactly 53 bits.
+    let (m, exact, e) = if bits > 53 {
+        let shift = bits - 53;
+        let m = n >> shift;
+        let exact = n.trailing_zeros().is_some_and(|z| z >= shift);
+        (m.to_u64()?, exact, shift as i64 - k as i64)
+    } else {
+        (n.to_u64()? << (53 - bits), true, -(k as i64) - (53 - bits) as i64)
+    };
+    // m·2^e is a normal float iff its biased exponent e + 52 + 1023 is in 1..=2046.
+    let biased = e + 1075;
+    if !(1..=2045).contains(&biased) {
+        return None;
+    }
+    let lo = f64::from_bits(((biased as u64) << 52) | (m & ((1 << 52) - 1)));
+    let hi = if exact { lo } else { lo.next_up() };
+    Some(if q.is_negative() {
+        interval(-hi, -lo)
+    } else {
+        interval(lo, hi)
     })
 }
 
@@ -179,6 +219,54 @@ mod tests {
         }
         // Beyond 2^53 the exact path takes over.
         assert!(small_rational_to_interval(&q(big + 1, 2)).is_none());
+    }
+
+    /// The dyadic fast path gives exactly the slow path's interval.
+    #[test]
+    fn dyadics_match_the_exact_bracket() {
+        let slow = |q: &BigRational| {
+            let approx = rational_to_f64(q);
+            let exact = |x: f64| BigRational::from_float(x).unwrap();
+            if exact(approx) == *q {
+                (approx, approx)
+            } else if exact(approx) < *q {
+                (approx, approx.next_up())
+            } else {
+                (approx.next_down(), approx)
+            }
+        };
+        let mut rng = crate::rng::Rng(0x2545f4914f6cdd1d);
+        let mut cases = Vec::new();
+        for _ in 0..20_000 {
+            // Sums and products of random floats of random magnitudes.
+            let x = |r: &mut crate::rng::Rng| {
+                let e = (r.next_u64() % 120) as i32 - 60;
+                BigRational::from_float(r.next_signed() * 2f64.powi(e)).unwrap()
+            };
+            let (a, b, c) = (x(&mut rng), x(&mut rng), x(&mut rng));
+            cases.push(&a * &b - &c);
+            cases.push(&a + &b * &c);
+        }
+        let big = BigRational::from_integer(BigInt::from(1) << 1100u32);
+        cases.push(BigRational::from_float(f64::MAX).unwrap());
+        cases.push(BigRational::from_float(f64::MIN_POSITIVE).unwrap() * BigRational::new(3.into(), 4.into()));
+        cases.push(
+            BigRational::new(1.into(), BigInt::from(1) << 1000u32)
+                + BigRational::new(1.into(), BigInt::from(1) << 1100u32),
+        );
+        cases.push(big);
+        let mut fast = 0;
+        for q in cases {
+            let x = rational_to_interval(&q);
+            if dyadic_to_interval(&q).is_some() {
+                fast += 1;
+            }
+            if x.sup().is_finite() && x.inf().is_finite() {
+                assert_eq!((x.inf(), x.sup()), slow(&q), "{q}");
+            }
+            assert!(interval_contains_rational(x, &q), "{q}");
+        }
+        assert!(fast > 30_000);
     }
 
     #[test]

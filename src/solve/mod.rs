@@ -7,6 +7,10 @@
 //! * [`SolveOptions`] chooses the clipping [`Method`] (Liu et al. 2016:
 //!   Bézier, linear, hybrid with and without preprocessing), `eps`, the
 //!   budgets and, for the square, the [`SquareRoute`].
+//! * [`solve_uni`] finds every root of one univariate polynomial
+//!   ([`UniBezier`](crate::UniBezier)) on its interval, with the
+//!   [`UniSolution`] contract (Descartes' rule, interval Newton, exact
+//!   arithmetic at the ends and where rounding leaves a region undecided).
 //!
 //! Floating point proposes; only rigorous arithmetic discards or certifies:
 //! the coefficients on every tri-box carry one rigorous radius from a-priori
@@ -31,6 +35,7 @@ mod regions;
 pub(crate) mod settle;
 mod solution;
 pub(crate) mod tribox;
+mod univariate;
 
 pub use options::{Domain, SolveOptions, SquareRoute};
 pub use referee::{classify_roots, ClaimVerdict, RootClassification};
@@ -47,6 +52,9 @@ pub use method::Method;
 use num_rational::BigRational;
 use regions::{group_overlapping, hull_of, join_undecided, merge_roots, touching_regions, Found};
 pub use solution::{Box2, Cluster, Leftover, Root, Solution, Stats, UndecidedReason};
+pub use univariate::{
+    solve_uni, UniCluster, UniOptions, UniPolynomial, UniRoot, UniSolution, UniStats, MAX_UNI_DEGREE,
+};
 
 /// How a root triangle's local `(s, t)` maps to the domain's `(u, v)`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

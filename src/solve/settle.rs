@@ -697,7 +697,7 @@ fn simplest_dyadic(lo: &Q, hi: &Q) -> Q {
 }
 
 /// `Σ b_i C(m, i) s^i (1 − s)^(m−i)` in the power basis (ascending).
-fn bernstein_to_power(b: &[Q]) -> Vec<Q> {
+pub(crate) fn bernstein_to_power(b: &[Q]) -> Vec<Q> {
     let m = b.len().saturating_sub(1);
     let binom = |n: usize, k: usize| -> BigInt { (0..k).fold(BigInt::one(), |acc, i| acc * (n - i) / (i + 1)) };
     let mut out = vec![Q::zero(); m + 1];

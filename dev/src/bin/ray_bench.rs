@@ -14,7 +14,7 @@
 //! `cargo run --release -p rootclip-dev --bin ray_bench [N]` (default 10,000; the
 //! triangle route runs on the first N/10 rays only: it is ~25× slower).
 
-use rootclip::heuristics::newton_ray_patch;
+use rootclip::heuristics::{iterate, IterOptions, Iteration};
 use rootclip::internals::aimed_rays;
 use rootclip::ray::{
     intersect, intersect_batch, Degeneracy, Hit, Patch, PatchSpec, Query, Ray, RayOptions, RayOutcome,
@@ -128,7 +128,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let t0 = Instant::now();
     let newton: Vec<_> = rays
         .iter()
-        .map(|r| newton_ray_patch(&patch, r, (0.5, 0.5), 1e-12, 30))
+        .map(|r| iterate(Iteration::Newton, &patch, r, [0.5, 0.5], &IterOptions::default()).end)
         .collect();
     let us_newton = t0.elapsed().as_secs_f64() * 1e6 / n as f64;
     let true_hits: usize = all
