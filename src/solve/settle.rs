@@ -18,10 +18,19 @@
 //! outward to dyadics a little finer than the box, so sizes stay bounded),
 //! which converges on the simple root, until the box is provably inside the
 //! domain (and `h ≥ 0` on it, if asked), provably outside it (or `h < 0`),
-//! or an iteration limit is reached (still undecided). A root exactly on an
-//! edge never separates from it, which is why the gcd comes first; `h = 0`
-//! exactly at the root (for a ray: the origin on the surface) is settled
-//! as `h ≥ 0` only where the box's enclosure of `h` is already `≥ 0`.
+//! or a limit is reached (still undecided): width `2^-1200`, a step that
+//! does not halve the box, or 16 steps. A root exactly on an edge never
+//! separates from it, which is why the gcd comes first.
+//!
+//! # Exact zeros: the root as a rational point
+//! Where `h = 0` exactly at the root (for a ray: the origin on the surface,
+//! `t = 0`) no contraction ever decides the sign, and the rationals double
+//! in size with every step. Such a root is usually a rational point (a
+//! float origin on a float patch puts it at a dyadic `(u, v)`), so the
+//! first three steps try the simplest rational (Stern–Brocot) and the
+//! simplest dyadic in each side of the box: a candidate at which `f` and
+//! `g` vanish exactly (integer evaluation) is the box's unique root, and
+//! the domain and `h ≥ 0` are then decided at that point exactly.
 //!
 //! Used by [`super::solve`] for exact input, and by the ray front end, whose
 //! reduction it repeats in rationals with exact plane normals.
