@@ -185,3 +185,18 @@ fn eps_rule_is_the_same_on_every_route() {
         }
     }
 }
+
+/// A direction so short that `t` overflows `f64` at the hit: a typed error,
+/// never a hit with `t = ∞` (JSON `null`).
+#[test]
+fn a_hit_whose_t_overflows_is_a_typed_error() {
+    use rootclip::Error;
+    let p = patch(r#"{"type": "tensor", "degree": [1, 1], "points": [[0, 0, 0], [0, 1, 0], [1, 0, 0], [1, 1, 0]]}"#);
+    let ray = Ray::new(DVec3::new(0.3, 0.4, 1e10), DVec3::new(0.0, 0.0, -1e-300)).unwrap();
+    let out = intersect(&p, &ray, &RayOptions::default());
+    assert!(matches!(out, Err(Error::NonFinite(_))), "{out:?}");
+    // The same ray with a longer direction: t = 1e10 / 1e-290, finite.
+    let ray = Ray::new(DVec3::new(0.3, 0.4, 1e10), DVec3::new(0.0, 0.0, -1e-290)).unwrap();
+    let hs = hits(&p, &ray, &RayOptions::default());
+    assert!(hs.len() == 1 && hs[0].is_certified() && hs[0].t.is_finite(), "{hs:?}");
+}
