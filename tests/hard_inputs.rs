@@ -200,3 +200,35 @@ fn a_hit_whose_t_overflows_is_a_typed_error() {
     let hs = hits(&p, &ray, &RayOptions::default());
     assert!(hs.len() == 1 && hs[0].is_certified() && hs[0].t.is_finite(), "{hs:?}");
 }
+
+/// A wall-clock deadline ends a solve with `complete = false` and its
+/// leftovers, never a wrong answer: with a zero timeout nothing is
+/// explored, on both domains and every square route; with a generous one
+/// the answer is the complete one.
+#[test]
+fn a_deadline_ends_a_solve_incomplete_with_leftovers() {
+    use rootclip::poly::parse_polynomial;
+    use rootclip::solve::{solve, Domain, SolveOptions};
+    use std::time::Duration;
+    let f = parse_polynomial("(u - 1/3)*(u - 2/3)").unwrap();
+    let g = parse_polynomial("(v - 1/4)*(v - 1/2)").unwrap();
+    for (domain, route) in [
+        (Domain::Triangle, SquareRoute::Triangles),
+        (Domain::Square, SquareRoute::Triangles),
+        (Domain::Square, SquareRoute::Rect),
+        (Domain::Square, SquareRoute::RectHybrid),
+    ] {
+        let opts = SolveOptions::default().with_square_route(route);
+        let sol = solve(&f, &g, domain, &opts.with_timeout(Duration::ZERO)).unwrap();
+        assert!(
+            !sol.complete && !sol.leftovers.is_empty(),
+            "{domain:?} {route:?}: {sol:?}"
+        );
+        let full = solve(&f, &g, domain, &opts.with_timeout(Duration::from_secs(600))).unwrap();
+        let want = if domain == Domain::Triangle { 3 } else { 4 };
+        assert!(
+            full.complete && full.roots.len() == want,
+            "{domain:?} {route:?}: {full:?}"
+        );
+    }
+}

@@ -1,7 +1,11 @@
 #!/usr/bin/env python3
 """Hard inputs of issue 20: time and certified counts, one process per input.
 
-Usage: dev/hard/families.py BINARY [--timeout S] [--only SUBSTRING]...
+Usage: dev/hard/families.py BINARY [--timeout S] [--deadline S] [--route R] [--only SUBSTRING]...
+
+--timeout kills a run after S seconds; --deadline passes `--timeout S` to
+`rootclip solve` (the library's wall-clock budget); --route passes
+`--square-route R` to the square's solves.
 
 Each family runs `BINARY solve ... --json` or `BINARY ray ... --json` under a
 wall-clock limit and prints one line: name, seconds, complete, certified
@@ -100,10 +104,13 @@ RAYS = [
 ]
 
 EXTRA = []
+EXTRA_SOLVE = []
 
 def run(cmd, timeout):
     if cmd[1] == "solve" and "square" in cmd:
         cmd = cmd + EXTRA
+    if cmd[1] == "solve":
+        cmd = cmd + EXTRA_SOLVE
     t0 = time.perf_counter()
     try:
         p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
@@ -125,6 +132,8 @@ def main():
     while i < len(args):
         if args[i] == "--timeout":
             timeout = float(args[i + 1]); i += 2
+        elif args[i] == "--deadline":
+            EXTRA_SOLVE.extend(["--timeout", args[i + 1]]); i += 2
         elif args[i] == "--route":
             EXTRA.extend(["--square-route", args[i + 1]]); i += 2
         elif args[i] == "--only":

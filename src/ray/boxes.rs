@@ -116,6 +116,7 @@ pub(super) fn intersect_rect(p: &TensorPatch, ray: &Ray, opts: &RayOptions) -> R
             SquareRoute::RectHybrid => RectClip::Hybrid,
             _ => RectClip::Bezier,
         },
+        deadline: None,
     };
     let sol = match solve_rect_iv(problem, &ropts) {
         Ok(r) => r.solution,

@@ -77,6 +77,8 @@ pub struct RectOptions {
     pub key_min: Option<[f64; 2]>,
     /// The clipping method.
     pub clip: RectClip,
+    /// No box is processed after this instant (`complete = false`).
+    pub deadline: Option<std::time::Instant>,
 }
 
 impl Default for RectOptions {
@@ -87,6 +89,7 @@ impl Default for RectOptions {
             query: Query::All,
             key_min: None,
             clip: RectClip::default(),
+            deadline: None,
         }
     }
 }
@@ -384,7 +387,9 @@ impl Runner {
             if self.stopped_early {
                 break;
             }
-            if self.stats.boxes >= self.opts.max_boxes {
+            if self.stats.boxes >= self.opts.max_boxes
+                || self.opts.deadline.is_some_and(|d| std::time::Instant::now() >= d)
+            {
                 queue.push(node);
                 return queue;
             }
