@@ -31,8 +31,9 @@
 //!    triangle clipping — Bézier, linear, hybrid — with verified clips, box
 //!    clipping for tensor systems, Krawczyk certificates, exact settling on
 //!    the boundary).
-//! 4. Front ends: [`ray`] (certified ray–patch hits), [`heuristics`]
-//!    (uncertified solvers from the papers, refereed by the certified ones).
+//! 4. Front ends: [`ray`] (certified ray–patch hits), [`project`] (certified
+//!    closest points and inversion), [`heuristics`] (uncertified solvers from
+//!    the papers, refereed by the certified ones).
 //! 5. The `rootclip` binary (feature `cli`).
 //!
 //! # Features
@@ -55,6 +56,7 @@
 mod error;
 pub mod heuristics;
 pub mod poly;
+pub mod project;
 pub mod ray;
 pub mod scalar;
 pub mod solve;

@@ -6,6 +6,7 @@ mod crosscheck;
 mod heuristics;
 mod input;
 mod json;
+mod project;
 mod ray;
 mod solve;
 mod tables;
@@ -35,6 +36,8 @@ enum Command {
     Ray(ray::RayArgs),
     /// Referee claimed ray hits (a fast solver's) against the certified hits.
     Crosscheck(crosscheck::CrosscheckArgs),
+    /// The certified closest point of a patch to each of many points.
+    Project(project::ProjectArgs),
     /// Print the exact Bernstein–Bézier coefficients of a polynomial in u, v.
     Bernstein(bernstein::BernsteinArgs),
     /// Seed 000's experiment: four ray–patch iterations from 121 starts, each end point refereed.
@@ -53,7 +56,7 @@ pub fn main() -> ExitCode {
             return ExitCode::SUCCESS;
         }
         Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
-            eprintln!("rootclip: missing subcommand (bernstein, crosscheck, heuristics, ray, solve, tables); see rootclip --help");
+            eprintln!("rootclip: missing subcommand (bernstein, crosscheck, heuristics, project, ray, solve, tables); see rootclip --help");
             return ExitCode::from(2);
         }
         Err(e) => {
@@ -74,6 +77,7 @@ pub fn main() -> ExitCode {
         Command::Tables(args) => tables::run(&args),
         Command::Ray(args) => ray::run(&args),
         Command::Crosscheck(args) => crosscheck::run(&args),
+        Command::Project(args) => project::run(&args),
         Command::Heuristics(args) => heuristics::run(&args),
         Command::Solve(args) => solve::run(&args),
     };

@@ -11,6 +11,10 @@
 //!   each step reading the patch's [`jet`]; [`experiment`] reruns the
 //!   paper's Examples 1–3 with every end point refereed by
 //!   [`crate::ray::classify`].
+//! * [`inversion`]: the point-inversion methods of Pei, Wang & Zhang (2019)
+//!   (seed 001) — RK4 tracing + Newton, Wang's multisegment tracing, Hu &
+//!   Wallner's second-order iteration from 64 pieces, Newton from a grid —
+//!   each run refereed by the certified projection ([`crate::project`]).
 //! * [`ray_segment_2d`], [`ray_quadratic_bezier_2d`],
 //!   [`ray_swept_quadratic_patch_3d`]: the closed forms of Christensen
 //!   (2008), *Ray intersections* (seed 003), computed in `f64` as the paper
@@ -40,6 +44,7 @@ mod closed_form;
 pub mod experiment;
 mod first_order;
 mod halley;
+pub mod inversion;
 mod iteration;
 mod jet;
 mod linalg;

@@ -118,6 +118,18 @@ pub fn tri_product_weights(m: usize, n: usize) -> Vec<BigRational> {
     out
 }
 
+/// The weights of the univariate BB product of degrees `m` and `n`:
+/// `C(m, i) C(n, j) / C(m + n, i + j)` at `i·(n + 1) + j`.
+pub fn uni_product_weights(m: usize, n: usize) -> Vec<BigRational> {
+    let mut out = Vec::with_capacity((m + 1) * (n + 1));
+    for i in 0..=m {
+        for j in 0..=n {
+            out.push(ratio(binomial(m, i) * binomial(n, j), binomial(m + n, i + j)));
+        }
+    }
+    out
+}
+
 /// The triangular L2 projection from degree `n` to `k`: `G_kk⁻¹ G_kn`,
 /// `tri_len(k) × tri_len(n)`.
 pub fn tri_reduction_exact(n: usize, k: usize) -> Vec<BigRational> {

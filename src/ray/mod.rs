@@ -48,9 +48,9 @@
 
 mod bezier;
 mod boxes;
-mod bspline;
+pub(crate) mod bspline;
 mod hit;
-mod patch;
+pub(crate) mod patch;
 mod planes;
 mod query;
 mod referee;

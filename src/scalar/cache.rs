@@ -25,6 +25,8 @@ pub enum MatrixKey {
     TensorToTri(usize, usize),
     /// Weights of the triangular BB product of degrees `m` and `n`.
     TriProduct(usize, usize),
+    /// Weights of the univariate BB product of degrees `m` and `n`.
+    UniProduct(usize, usize),
 }
 
 /// The process-wide cache of one kernel.

@@ -162,6 +162,14 @@ impl Iv {
     /// `t`, so both extremes are at `t0` or `t1`).
     #[inline]
     pub fn lerp_range(a: Self, b: Self, t0: f64, t1: f64) -> Self {
+        if t0 == t1 {
+            // A point: one evaluation (the hot case of bounds at points).
+            return if (0.0..=1.0).contains(&t0) {
+                Self::lerp(a, b, t0)
+            } else {
+                Self::lerp_any(a, b, t0)
+            };
+        }
         let (x, y) = if (0.0..=1.0).contains(&t0) && (0.0..=1.0).contains(&t1) {
             (Self::lerp(a, b, t0), Self::lerp(a, b, t1))
         } else {

@@ -63,6 +63,10 @@ pub(super) struct Node {
     pub(super) c: Vec<Iv>,
     pub(super) bx: [[Iv; 2]; 2],
     pub(super) id: u32,
+    /// A lower bound of the objective over this box computed for exactly
+    /// this box ([`Query::Nearest`](super::Query::Nearest) orders children
+    /// by it and then prunes with it, so it is computed once), or `None`.
+    pub(super) key: Option<f64>,
 }
 
 impl Node {

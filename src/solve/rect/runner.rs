@@ -79,6 +79,13 @@ pub struct RectOptions {
     pub clip: RectClip,
     /// No box is processed after this instant (`complete = false`).
     pub deadline: Option<std::time::Instant>,
+    /// [`Query::Nearest`] only: an upper bound of the objective's minimum
+    /// known from elsewhere (a point where the caller's objective was
+    /// enclosed). Boxes whose objective is provably above it are dropped
+    /// from the start, as if a root with that bound had been certified;
+    /// `complete = true` then speaks of the roots whose objective is at most
+    /// the smaller of the two bounds.
+    pub key_max: Option<f64>,
 }
 
 impl Default for RectOptions {
@@ -90,6 +97,7 @@ impl Default for RectOptions {
             key_min: None,
             clip: RectClip::default(),
             deadline: None,
+            key_max: None,
         }
     }
 }
@@ -317,11 +325,15 @@ pub(crate) fn solve_rect_iv(p: RectProblem, opts: &RectOptions) -> Result<RectSo
         undecided: Vec::new(),
         problem: p,
         global: None,
-        best: f64::INFINITY,
+        best: match opts.query {
+            Query::Nearest => opts.key_max.filter(|k| !k.is_nan()).unwrap_or(f64::INFINITY),
+            _ => f64::INFINITY,
+        },
         stopped_early: false,
         edge_strips: Vec::new(),
     };
     let mut first = Node {
+        key: None,
         c: buf,
         bx: domain,
         id: run.push_trace(u32::MAX, domain.map(|[lo, hi]| [lo.lo, hi.hi])),
@@ -400,8 +412,12 @@ impl Runner {
                 Step::Split(a, b) => {
                     // Nearest: the child nearer in the objective first, so
                     // that a near root is certified early and prunes the rest.
-                    let swap =
-                        self.opts.query == Query::Nearest && self.key_over(b.ibox()).0 < self.key_over(a.ibox()).0;
+                    let (mut a, mut b) = (a, b);
+                    if self.opts.query == Query::Nearest {
+                        a.key = Some(self.key_over(a.ibox()).0);
+                        b.key = Some(self.key_over(b.ibox()).0);
+                    }
+                    let swap = self.opts.query == Query::Nearest && b.key < a.key;
                     let (a, b) = if swap { (b, a) } else { (a, b) };
                     queue.push(b);
                     queue.push(a);
@@ -421,7 +437,10 @@ impl Runner {
         }
         // Nearest: once a root is certified, a box whose objective is
         // provably above it cannot hold a nearer root.
-        if self.opts.query == Query::Nearest && self.best < f64::INFINITY && self.key_over(node.ibox()).0 > self.best {
+        if self.opts.query == Query::Nearest
+            && self.best < f64::INFINITY
+            && node.key.unwrap_or_else(|| self.key_over(node.ibox()).0) > self.best
+        {
             self.stats.sign_exclusions += 1;
             return Step::Done;
         }

@@ -171,6 +171,7 @@ pub(super) fn clip(node: &mut Node, sh: Shape, d: usize, alpha: f64, beta: f64) 
     let new_lo = if alpha > 0.0 { Iv::lerp(lo, hi, alpha) } else { lo };
     let new_hi = if gamma < 1.0 { Iv::lerp(new_lo, hi, gamma) } else { hi };
     node.bx[d] = [new_lo, new_hi];
+    node.key = None;
 }
 
 /// Splits the node at [`SPLIT`] in direction `d`.
@@ -183,6 +184,7 @@ pub(super) fn split(node: &Node, sh: Shape, d: usize) -> (Node, Node) {
     let mid = Iv::lerp(lo, hi, SPLIT);
     left.bx[d] = [lo, mid];
     right.bx[d] = [mid, hi];
+    (left.key, right.key) = (None, None);
     (left, right)
 }
 
