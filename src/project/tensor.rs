@@ -28,7 +28,7 @@ use crate::poly::UniBezier;
 use crate::ray::patch::TensorPatch;
 use crate::scalar::interval;
 use crate::scalar::iv::Iv;
-use crate::solve::rect::{eval_box, solve_rect_iv, Query, RectOptions, RectProblem};
+use crate::solve::rect::{eval_box, solve_rect_iv, Query, RectOptions, RectProblem, Squares};
 use crate::solve::{solve_uni, Box2, SolveOptions, UniOptions};
 use glam::DVec3;
 
@@ -223,6 +223,12 @@ pub(super) fn candidates(
         g,
         num: Some(num),
         den: prep.w2.clone(),
+        squares: Some(Squares {
+            m: dist.diff[0].m,
+            n: dist.diff[0].n,
+            c: [dist.diff[0].c.clone(), dist.diff[1].c.clone(), dist.diff[2].c.clone()],
+            w: dist.w.map(|w| w.c.clone()),
+        }),
     };
     // Floating point proposes a near point; its enclosed distance bounds the
     // minimum from above, so every region provably farther is pruned from

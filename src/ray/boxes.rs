@@ -105,6 +105,7 @@ pub(super) fn intersect_rect(p: &TensorPatch, ray: &Ray, opts: &RayOptions) -> R
         g,
         num: Some(h.clone()),
         den: den.clone(),
+        squares: None,
     };
     let ropts = RectOptions {
         eps: opts.solve.eps,

@@ -220,6 +220,7 @@ pub fn solve_rect(
         g: lift(g)?,
         num: objective.map(|o| lift(o.num)).transpose()?,
         den: objective.and_then(|o| o.den).map(lift).transpose()?,
+        squares: None,
     };
     solve_rect_iv(problem, opts)
 }
@@ -236,6 +237,39 @@ pub(crate) struct RectProblem {
     pub(crate) g: Vec<Iv>,
     pub(crate) num: Option<Vec<Iv>>,
     pub(crate) den: Option<Vec<Iv>>,
+    /// The objective as a sum of squares, `Σ_k (c_k / w)²`, each `c_k` (and
+    /// `w > 0`) of its own bidegree `(m', n')` on the domain: when present,
+    /// the objective is bounded over a box coordinate by coordinate (tight
+    /// where the expanded `num/den` would cancel); `num`/`den` must still be
+    /// the same objective.
+    pub(crate) squares: Option<Squares>,
+}
+
+/// See [`RectProblem::squares`].
+#[derive(Clone, Debug)]
+pub(crate) struct Squares {
+    pub(crate) m: usize,
+    pub(crate) n: usize,
+    pub(crate) c: [Vec<Iv>; 3],
+    pub(crate) w: Option<Vec<Iv>>,
+}
+
+impl Squares {
+    fn over(&self, s: [f64; 2], t: [f64; 2]) -> Iv {
+        let w = self.w.as_ref().map(|w| eval_box(w, self.m, self.n, s, t));
+        self.c.iter().fold(Iv::point(0.0), |acc, c| {
+            let e = eval_box(c, self.m, self.n, s, t);
+            let e = w.map_or(e, |w| e.div(w));
+            let a = if e.lo >= 0.0 {
+                e
+            } else if e.hi <= 0.0 {
+                Iv::new(-e.hi, -e.lo)
+            } else {
+                Iv::new(0.0, e.hi.max(-e.lo))
+            };
+            acc.add(a.mul(a))
+        })
+    }
 }
 
 /// [`solve_rect`] on [`Iv`] coefficients (the ray front end's fast path).
@@ -571,6 +605,12 @@ impl Runner {
             [l.lo, h.hi]
         };
         let (s, t) = (local(0), local(1));
+        if let Some(sq) = &p.squares {
+            let k = sq.over(s, t);
+            if !(k.lo.is_nan() || k.hi.is_nan()) {
+                return (k.lo, k.hi);
+            }
+        }
         let k = eval_box(num, p.m, p.n, s, t);
         let k = match &p.den {
             Some(den) => k.div(eval_box(den, p.m, p.n, s, t)),
