@@ -48,7 +48,7 @@ pub mod triangle {
 }
 
 pub use crate::heuristics::experiment::at_scale_rays;
-pub use crate::ray::sample::aimed_rays;
+pub use crate::ray::sample::{aimed_rays, secondary_rays, surface_aimed_rays};
 pub use crate::rng::Rng;
 
 use crate::poly::{TensorBezier, TriBezier};

@@ -464,6 +464,7 @@ fn separation_in_tree(ex: &Example, m: Method, variant: Variant) -> Res<Option<(
         probe_below: 0.0,
         split: o.split,
         swap_roles: o.swap_roles,
+        deadline: None,
     };
     let run = driver::run::<GeoIv>(
         &ball(&f),

@@ -49,6 +49,11 @@ pub(super) struct SolveArgs {
     /// paper's conversion), or natively on boxes.
     #[arg(long, value_enum, default_value = "triangles")]
     square_route: SquareRoute,
+    /// Wall-clock budget in seconds: past it no further box is processed,
+    /// and the answer lists the unexplored regions as leftovers (complete =
+    /// false).
+    #[arg(long)]
+    timeout: Option<f64>,
     /// Print JSON instead of text.
     #[arg(long)]
     json: bool,
@@ -60,6 +65,12 @@ pub(super) fn run(args: &SolveArgs) -> Result<String> {
         .with_eps(args.eps)
         .with_max_boxes(args.max_boxes)
         .with_square_route(args.square_route);
+    let opts = match args.timeout {
+        Some(s) => opts.with_timeout(std::time::Duration::try_from_secs_f64(s).map_err(|_| {
+            Error::InvalidOption(format!("--timeout must be a non-negative number of seconds, got {s}"))
+        })?),
+        None => opts,
+    };
     let t0 = std::time::Instant::now();
     let sol = match (&args.f, &args.g, &args.f_bb, &args.g_bb) {
         (Some(f), Some(g), None, None) => {

@@ -641,9 +641,14 @@ impl TriBallDD {
     /// L = r1 + r2 + e1 + e2 + e3 + s Al + t Bl + wh Cl + wl Ch
     /// ```
     /// and `L` is summed in `f64` (ten roundings). Every term of `L` is at
-    /// most `u·S·M` (`S = |s| + |t| + |wh|`, `M` the input magnitude) or
-    /// `|wl|M`, four `u S M` in all, so the step errs by at most
-    /// `γ₁₀(4u S M + |wl| M) + 2u|wl| M ≤ (44u² S + 13u |wl|) M`, and
+    /// most `u·S·M` (`S = |s| + |t| + |wh| + |wl|`, `M` the input magnitude)
+    /// or `|wl|M`, four `u S M` in all. The two terms left out of `L`:
+    /// `|wl Cl| ≤ u|wl|M`, and `|ew C| ≤ 2u²(1 + u)⁵ S M` by the bound of
+    /// `DdPoint` in `scalar::eft` (not `u|wl|M`: `wl` may be far below `ew/u` when the
+    /// last TwoSum of `w` carries). So, with `γ₁₀ ≤ 10u(1 + 11u)`, the step
+    /// errs by at most
+    /// `γ₁₀(4u S M + |wl| M) + u|wl| M + 2u²(1 + u)⁵ S M ≤ (42.01u² S + 11.01u |wl|) M`
+    /// `≤ (44u² S + 13u |wl|) M`, and
     /// `(h, L)` is renormalized exactly by TwoSum. Over the `n` steps of a
     /// coefficient, as for the float ball:
     /// ```text

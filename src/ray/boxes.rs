@@ -117,6 +117,7 @@ pub(super) fn intersect_rect(p: &TensorPatch, ray: &Ray, opts: &RayOptions) -> R
             SquareRoute::RectHybrid => RectClip::Hybrid,
             _ => RectClip::Bezier,
         },
+        deadline: None,
         key_max: None,
     };
     let sol = match solve_rect_iv(problem, &ropts) {

@@ -69,7 +69,7 @@ pub use referee::{classify, classify_with, Claim, Classification};
 pub use spec::PatchSpec;
 pub use surface::Patch;
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use patch::BezierRef;
 use rayon::prelude::*;
 
@@ -84,7 +84,9 @@ use rayon::prelude::*;
 ///
 /// `complete` keeps its meaning for the hits the query asks for. Each hit is
 /// certified or says why not ([`HitStatus`]); see the module docs for the
-/// reduction. Errors: invalid options ([`Error::InvalidOption`](crate::Error::InvalidOption)).
+/// reduction. Errors: invalid options ([`Error::InvalidOption`](crate::Error::InvalidOption));
+/// a hit whose `t` or point overflows `f64` (a direction too short for the patch:
+/// [`Error::NonFinite`](crate::Error::NonFinite)).
 ///
 /// ```
 /// use rootclip::glam::DVec3;
@@ -102,11 +104,31 @@ use rayon::prelude::*;
 /// ```
 pub fn intersect(patch: &Patch, ray: &Ray, opts: &RayOptions) -> Result<RayOutcome> {
     opts.validate()?;
-    match patch {
+    let out = match patch {
         Patch::Triangle(p) => bezier::intersect_bezier(BezierRef::Tri(p), ray, opts),
         Patch::Tensor(p) => bezier::intersect_bezier(BezierRef::Tensor(p), ray, opts),
         Patch::Bspline(s) => bspline::intersect_bspline(s, ray, opts),
+    }?;
+    // A hit's numbers overflow only where `t ~ |S − o| / |d|` exceeds the
+    // largest float (a very short direction): an error, never a NaN or ∞
+    // in a hit (JSON would print `null`).
+    if let Some(h) = out.hits().iter().find(|h| !hit_is_finite(h)) {
+        return Err(Error::NonFinite(format!(
+            "a hit's t or point overflows f64 (t box {:?}): the direction is too short for this patch",
+            h.bx.t
+        )));
     }
+    Ok(out)
+}
+
+/// Every number of `h` is finite.
+fn hit_is_finite(h: &Hit) -> bool {
+    let b = &h.bx;
+    [h.t, h.u, h.v, b.u[0], b.u[1], b.v[0], b.v[1], b.t[0], b.t[1]]
+        .iter()
+        .all(|x| x.is_finite())
+        && h.point.is_finite()
+        && h.normal.is_finite()
 }
 
 /// [`intersect`] for many rays, in parallel (rayon's global pool), the

@@ -160,6 +160,14 @@ fn homogeneous(points: &[DVec3], weights: Option<&[f64]>, want: usize) -> Result
                 w[k]
             )));
         }
+        // A subnormal weight's products underflow: the patch's points in
+        // f64 would be 0/0 (NaN), so the input is rejected.
+        if let Some(k) = w.iter().position(|&x| x < f64::MIN_POSITIVE) {
+            return Err(Error::NonFinite(format!(
+                "weight {k} is {:e}, below the smallest normal float 2^-1022 (its products underflow)",
+                w[k]
+            )));
+        }
     }
     let mut fl = Vec::with_capacity(want);
     let mut iv = Vec::with_capacity(want);
@@ -182,8 +190,8 @@ fn column<S: Clone>(rows: &[[S; 4]], c: usize) -> Vec<S> {
 impl TriPatch {
     /// A patch of degree `n ≥ 1` from `(n+1)(n+2)/2` control points in the
     /// order of Eq. (2) and optional weights in the same order. Errors: wrong
-    /// counts ([`Error::Shape`]), NaN or ±∞ ([`Error::NonFinite`]), a weight
-    /// `≤ 0` ([`Error::Degenerate`]).
+    /// counts ([`Error::Shape`]), NaN or ±∞ or a subnormal weight
+    /// ([`Error::NonFinite`]), a weight `≤ 0` ([`Error::Degenerate`]).
     ///
     /// ```
     /// use rootclip::glam::DVec3;

@@ -15,7 +15,8 @@ pub struct Ray {
 
 impl Ray {
     /// A ray from `origin` along `dir` (not normalized; `t` is measured in
-    /// units of `dir`). Errors: NaN/∞ ([`Error::NonFinite`]), zero direction
+    /// units of `dir`). Errors: NaN/∞, or a direction subnormal in every
+    /// component (`t` would overflow) ([`Error::NonFinite`]); zero direction
     /// ([`Error::Degenerate`]).
     ///
     /// ```
@@ -36,6 +37,14 @@ impl Ray {
         }
         if dir == DVec3::ZERO {
             return Err(Error::Degenerate("the ray direction is zero".into()));
+        }
+        // t scales as 1/|d|: with every component subnormal it overflows
+        // f64 at any distance above about 2^-52.
+        if dir.abs().max_element() < f64::MIN_POSITIVE {
+            return Err(Error::NonFinite(format!(
+                "the ray direction {:?} is subnormal (below 2^-1022 in every component): t would overflow",
+                dir.to_array()
+            )));
         }
         Ok(Self { origin, dir })
     }

@@ -21,8 +21,21 @@ pub(crate) fn two_prod(a: f64, b: f64) -> (f64, f64) {
     (p, a.mul_add(b, -p))
 }
 
-/// A vertex in double-double barycentrics: `s`, `t` exact, `1 − s − t =
-/// wh + wl` up to `|ew| ≤ u|wl|`.
+/// A vertex in double-double barycentrics: `s`, `t` exact, and
+/// `w = 1 − s − t = wh + wl + ew` with
+/// ```text
+/// |ew| ≤ 2u²(1 + u)⁴ (|t| + |wh| + |wl|)        (u = 2⁻⁵³)
+/// ```
+/// Derivation ([`DdPoint::new`]): TwoSum gives `1 − s = a + e1` and
+/// `a − t = b + e2` exactly, `|e1| ≤ u|a|`, `|e2| ≤ u|b|`; `c = fl(e1 + e2)`
+/// rounds once, so `ew = e1 + e2 − c`, `|ew| ≤ u(|e1| + |e2|) ≤ u²(|a| + |b|)`;
+/// the last TwoSum `b + c = wh + wl` is exact. With `1 − s = t + w` and
+/// `a − t = w − e1`: `|a| ≤ (1 + u)(|t| + |w|)`, `|b| ≤ (1 + u)(|w| + u|a|)`,
+/// so `|a| + |b| ≤ (1 + u)³(|t| + 2|w|)`, and `|w| ≤ |wh| + |wl| + |ew|`
+/// gives the bound (the `|ew|` on the right costs one more `1 + u`).
+/// It is *not* `u|wl|`: that holds only while the last TwoSum does not
+/// carry (`wh = b`, `wl = c`); when `c` moves `wh` off `b`, `wl` can be far
+/// below `c` (the carry case, tested below).
 #[derive(Clone, Copy)]
 pub(crate) struct DdPoint {
     pub(crate) s: f64,
@@ -84,4 +97,47 @@ pub(crate) fn mul_up(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
 pub(crate) fn select(take: bool, x: f64, y: f64) -> f64 {
     let mask = (take as u64).wrapping_neg();
     f64::from_bits((x.to_bits() & mask) | (y.to_bits() & !mask))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_rational::BigRational;
+    use num_traits::Signed;
+
+    /// The bound of [`DdPoint`] on vertices where the last TwoSum carries
+    /// (`wh ≠ fl(1 − s − t)`'s first part) and `|ew| > u|wl|` — the case
+    /// the earlier `|ew| ≤ u|wl|` missed — and on a grid of ordinary ones;
+    /// `ew` computed exactly.
+    #[test]
+    fn dd_point_error_bound_holds_in_the_carry_case() {
+        let q = |x: f64| BigRational::from_float(x).unwrap();
+        let u = f64::EPSILON / 2.0;
+        let check = |s: f64, t: f64| -> bool {
+            let p = DdPoint::new([s, t]);
+            let ew = BigRational::from_integer(1.into()) - q(s) - q(t) - q(p.wh) - q(p.wl);
+            let bound = 2.0 * u * u * (1.0 + u).powi(4) * (t.abs() + p.wh.abs() + p.wl.abs());
+            assert!(ew.abs() <= q(bound), "s = {s:e}, t = {t:e}: ew = {ew}");
+            ew.abs() > q(u * p.wl.abs())
+        };
+        let carry = [
+            (0x3c83980ad596aec6u64, 0xbcd607ade1e8331bu64),
+            (0xbfc3eece750ae966, 0x3c9da5252c9c80cb),
+            (0xbfd4f6c4b41b4909, 0xbc944ef593ba2e77),
+        ];
+        for (s, t) in carry {
+            let (s, t) = (f64::from_bits(s), f64::from_bits(t));
+            let (a, _) = two_sum(1.0, -s);
+            let (b, _) = two_sum(a, -t);
+            assert_ne!(DdPoint::new([s, t]).wh, b, "not a carry case");
+            assert!(check(s, t), "|ew| ≤ u|wl| holds here: not the case tested");
+        }
+        for i in 0..64 {
+            for j in 0..64 {
+                let s = (i as f64 / 63.0) * (1.0 + 1e-3 * (j as f64).sin());
+                let t = (1.0 - s) * (j as f64 / 63.0) + 1e-18 * i as f64;
+                check(s, t);
+            }
+        }
+    }
 }

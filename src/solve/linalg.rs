@@ -5,9 +5,9 @@
 //! vanishing, and Gaussian elimination for the 3×3 systems of the
 //! preprocessing multipliers and the least-squares fits.
 
-use num_bigint::BigInt;
+use crate::scalar::rational_interval::{div_round, q_mul, q_sub, Round};
 use num_rational::BigRational;
-use num_traits::{One, Signed, Zero};
+use num_traits::{Signed, Zero};
 
 type Q = BigRational;
 
@@ -23,23 +23,30 @@ pub(crate) fn inverse2(m: [f64; 4], tiny: f64) -> Option<[f64; 4]> {
     Some([m[3] / det, -m[1] / det, -m[2] / det, m[0] / det])
 }
 
-/// `Y ≈ J⁻¹`: the exact inverse of the midpoint Jacobian rounded to
-/// multiples of `2^-bits` relative to its size (any `Y` keeps Krawczyk
-/// rigorous; a sharp one makes `I − Y J(X)` of the order of the box, so the
-/// contraction is quadratic, and on a linear system it is one step).
+/// `Y ≈ J⁻¹`: the exact inverse of the midpoint Jacobian, each entry
+/// rounded to nearest with `bits` significant bits (relative to itself, so
+/// scaling an equation or a variable scales `Y` exactly and loses nothing;
+/// zero entries stay zero). Any `Y` keeps Krawczyk rigorous; a sharp one
+/// makes `I − Y J(X)` of the order of the box, so the contraction is
+/// quadratic, and on a linear system it is one step. `None` if `J` is
+/// singular.
 pub(crate) fn inverse2_dyadic(j: &[[Q; 2]; 2], bits: u64) -> Option<[[Q; 2]; 2]> {
-    let det = &j[0][0] * &j[1][1] - &j[0][1] * &j[1][0];
+    let det = q_sub(&q_mul(&j[0][0], &j[1][1]), &q_mul(&j[0][1], &j[1][0]));
     if det.is_zero() {
         return None;
     }
-    let inv = [[&j[1][1] / &det, -&j[0][1] / &det], [-&j[1][0] / &det, &j[0][0] / &det]];
-    // Round relative to the largest entry, so that the denominators stay
-    // bounded whatever the scale.
-    let big = inv.iter().flatten().map(|x| x.abs()).max().expect("four entries");
-    let e = big.numer().bits() as i64 - big.denom().bits() as i64;
-    let shift = (bits as i64 - e).clamp(0, 1 << 20) as u64;
-    let s = Q::from_integer(BigInt::one() << shift);
-    Some(inv.map(|r| r.map(|x| (x * &s).round() / &s)))
+    let adj = [[j[1][1].clone(), -&j[0][1]], [-&j[1][0], j[0][0].clone()]];
+    // An entry x = a/det ≈ 2^e is rounded to a multiple of 2^(e − bits).
+    // (Divided only as it is rounded: a reduced quotient costs a gcd.)
+    let round = |x: &Q| {
+        if x.is_zero() {
+            return Q::zero();
+        }
+        let e = (x.numer().bits() + det.denom().bits()) as i64 - (x.denom().bits() + det.numer().bits()) as i64;
+        let shift = (bits as i64 - e).clamp(0, 1 << 20) as u64;
+        div_round(x, &det, shift, Round::Nearest)
+    };
+    Some(adj.map(|r| r.map(|x| round(&x))))
 }
 
 /// The left singular vector of the smallest singular value of the 2×2

@@ -131,6 +131,7 @@ fn scaler(coeffs: &[BigRational]) -> impl Fn(&BigRational) -> BigRational {
 /// ```
 pub fn solve(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions) -> Result<Solution> {
     opts.validate()?;
+    let opts = &opts.started();
     not_zero(f.is_zero(), g.is_zero())?;
     for p in [f, g] {
         p.check_conversion_cost(domain == Domain::Square)?;
@@ -267,6 +268,7 @@ impl sealed::Sealed for TensorBezier<Interval> {
 /// ```
 pub fn solve_bb<P: BbPolynomial>(f: &P, g: &P, opts: &SolveOptions) -> Result<Solution> {
     opts.validate()?;
+    let opts = &opts.started();
     match (f.input()?, g.input()?) {
         (BbInput::Triangle(f), BbInput::Triangle(g)) => {
             not_zero(f.is_zero(), g.is_zero())?;
@@ -364,10 +366,11 @@ fn solve_exact_square(
                 SquareRoute::RectHybrid => rect::RectClip::Hybrid,
                 _ => rect::RectClip::Bezier,
             },
+            deadline: opts.deadline,
             ..rect::RectOptions::default()
         };
         let sol = rect::solve_rect(&ef.map(enclose), &eg.map(enclose), None, &ropts)?.solution;
-        if sol.complete {
+        if sol.complete || opts.deadline.is_some_and(|d| std::time::Instant::now() >= d) {
             return Ok(finish_exact(sol, &sys));
         }
         // Out of budget (e.g. two curves running nearly parallel

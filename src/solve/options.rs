@@ -102,6 +102,16 @@ pub struct SolveOptions {
     /// How [`Domain::Square`] is solved (default [`SquareRoute::Triangles`],
     /// the paper's conversion).
     pub square_route: SquareRoute,
+    /// Wall-clock budget of a [`solve`](super::solve) or
+    /// [`solve_bb`](super::solve_bb) (default none): once it has passed, no
+    /// further tri-box or box is processed; the regions not yet explored
+    /// become leftovers and the answer has `complete = false` (never a
+    /// wrong one). Checked between boxes, so a run ends within one box's
+    /// work of it plus the final certification of what was found.
+    pub timeout: Option<std::time::Duration>,
+    /// When the running solve's `timeout` passes (set at its start).
+    #[cfg_attr(feature = "serde", serde(skip))]
+    pub(crate) deadline: Option<std::time::Instant>,
 }
 
 impl Default for SolveOptions {
@@ -115,6 +125,8 @@ impl Default for SolveOptions {
             split: SplitRule::Halving,
             swap_roles: true,
             square_route: SquareRoute::Triangles,
+            timeout: None,
+            deadline: None,
         }
     }
 }
@@ -136,6 +148,22 @@ impl SolveOptions {
     pub fn with_max_boxes(mut self, max_boxes: usize) -> Self {
         self.max_boxes = max_boxes;
         self
+    }
+
+    /// The same options with a wall-clock budget ([`SolveOptions::timeout`]).
+    pub fn with_timeout(mut self, timeout: std::time::Duration) -> Self {
+        self.timeout = Some(timeout);
+        self
+    }
+
+    /// The options of a solve starting now: its deadline set from
+    /// `timeout` (kept if already set, for the parts of one solve).
+    pub(crate) fn started(&self) -> Self {
+        let mut o = *self;
+        if o.deadline.is_none() {
+            o.deadline = o.timeout.and_then(|t| std::time::Instant::now().checked_add(t));
+        }
+        o
     }
 
     /// The same options with the square route.
@@ -176,6 +204,7 @@ impl SolveOptions {
             probe_below: if self.probe { 1e-3 } else { 0.0 },
             split: self.split,
             swap_roles: self.swap_roles,
+            deadline: self.deadline,
         }
     }
 }

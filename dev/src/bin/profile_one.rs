@@ -36,6 +36,7 @@ fn main() {
             probe_below: 0.0,
             split: SplitRule::Halving,
             swap_roles: true,
+            deadline: None,
         };
         let (fb, gb) = (TriBall::enclose(&f).unwrap(), TriBall::enclose(&g).unwrap());
         let ri = driver::run::<GeoIv>(&fb, &gb, Exact::None, &limits, &mut |_| Probe::Undecided(()));

@@ -332,6 +332,13 @@ fn check_points(points: &[DVec3], weights: Option<&[f64]>, nu: usize, nv: usize)
             w[k]
         )));
     }
+    // A subnormal weight's products underflow (the f64 points would be 0/0).
+    if let Some(k) = w.iter().position(|&x| x < f64::MIN_POSITIVE) {
+        return Err(Error::NonFinite(format!(
+            "weight {k} is {:e}, below the smallest normal float 2^-1022 (its products underflow)",
+            w[k]
+        )));
+    }
     if let Some(k) = (0..want).find(|&k| !(points[k] * w[k]).is_finite()) {
         return Err(Error::NonFinite(format!("weighted control point {k} overflows")));
     }

@@ -90,7 +90,10 @@ pub fn run<G: Geo>(
             cx.out.leaves.push(item);
             continue;
         }
-        if cx.out.counters.boxes >= limits.max_boxes || node.level >= limits.max_depth {
+        if cx.out.counters.boxes >= limits.max_boxes
+            || node.level >= limits.max_depth
+            || limits.deadline.is_some_and(|d| std::time::Instant::now() >= d)
+        {
             cx.out.leftovers.push(item);
             continue;
         }

@@ -17,6 +17,8 @@ pub struct Limits {
     pub eps: f64,
     /// At most this many tri-boxes are processed.
     pub max_boxes: usize,
+    /// No tri-box is processed after this instant.
+    pub deadline: Option<std::time::Instant>,
     /// No tri-box deeper than this level is processed.
     pub max_depth: usize,
     /// At most this many tri-boxes are computed from the exact rational

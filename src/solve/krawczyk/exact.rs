@@ -14,11 +14,12 @@
 //! Its systems implement [`RationalSystem`] instead.
 
 use super::verdict::Verdict;
-use crate::scalar::rational_interval::RI;
+use crate::scalar::rational_interval::{cmp, q_add, q_mul, q_sub, RI};
 use crate::solve::linalg::inverse2_dyadic;
 use crate::solve::solution::Box2;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
+use std::cmp::Ordering;
 
 type Q = BigRational;
 
@@ -55,7 +56,8 @@ pub(crate) fn certify<S: RationalSystem>(sys: &S, bx: Box2) -> Verdict<Box2, ()>
         let Some(k) = krawczyk(sys, &x) else {
             return Verdict::Undecided(());
         };
-        let inside = (0..2).all(|d| k[d].lo > x[d].lo && k[d].hi < x[d].hi);
+        let inside =
+            (0..2).all(|d| cmp(&k[d].lo, &x[d].lo) == Ordering::Greater && cmp(&k[d].hi, &x[d].hi) == Ordering::Less);
         if inside {
             let out = |r: &RI| {
                 let (lo, hi) = (r.lo.to_f64().unwrap_or(f64::NAN), r.hi.to_f64().unwrap_or(f64::NAN));
@@ -93,8 +95,8 @@ pub(crate) fn krawczyk<S: RationalSystem>(sys: &S, x: &[RI; 2]) -> Option<[RI; 2
     let dx = [x[0].sub_point(&mid[0]), x[1].sub_point(&mid[1])];
     let mut out: [RI; 2] = [RI::point(Q::zero()), RI::point(Q::zero())];
     for (i, o) in out.iter_mut().enumerate() {
-        let yf = &y[i][0] * &fm[0] + &y[i][1] * &fm[1];
-        let mut acc = RI::point(&mid[i] - yf);
+        let yf = q_add(&q_mul(&y[i][0], &fm[0]), &q_mul(&y[i][1], &fm[1]));
+        let mut acc = RI::point(q_sub(&mid[i], &yf));
         for (j, dxj) in dx.iter().enumerate() {
             // (I − Y J)_ij = δ_ij − Σ_l Y_il J_lj
             let yj = jx[0][j].scale(&y[i][0]).add(&jx[1][j].scale(&y[i][1]));

@@ -77,6 +77,8 @@ pub struct RectOptions {
     pub key_min: Option<[f64; 2]>,
     /// The clipping method.
     pub clip: RectClip,
+    /// No box is processed after this instant (`complete = false`).
+    pub deadline: Option<std::time::Instant>,
     /// [`Query::Nearest`] only: an upper bound of the objective's minimum
     /// known from elsewhere (a point where the caller's objective was
     /// enclosed). Boxes whose objective is provably above it are dropped
@@ -94,6 +96,7 @@ impl Default for RectOptions {
             query: Query::All,
             key_min: None,
             clip: RectClip::default(),
+            deadline: None,
             key_max: None,
         }
     }
@@ -271,8 +274,14 @@ impl Squares {
 
 /// [`solve_rect`] on [`Iv`] coefficients (the ray front end's fast path).
 pub(crate) fn solve_rect_iv(p: RectProblem, opts: &RectOptions) -> Result<RectSolution> {
-    if !(opts.eps > 0.0 && opts.eps < 1.0) {
-        return Err(Error::Shape(format!("eps must lie in (0, 1), got {}", opts.eps)));
+    // The rule of `SolveOptions::validate`, on every route: an `eps` of 1
+    // or more is valid and stops at the first box (a cluster, or a root
+    // Krawczyk certifies there).
+    if !(opts.eps.is_finite() && opts.eps > 0.0) {
+        return Err(Error::InvalidOption(format!(
+            "eps must be a positive finite number, got {}",
+            opts.eps
+        )));
     }
     let (m, n) = (p.m, p.n);
     let len = (m + 1) * (n + 1);
@@ -424,7 +433,9 @@ impl Runner {
             if self.stopped_early {
                 break;
             }
-            if self.stats.boxes >= self.opts.max_boxes {
+            if self.stats.boxes >= self.opts.max_boxes
+                || self.opts.deadline.is_some_and(|d| std::time::Instant::now() >= d)
+            {
                 queue.push(node);
                 return queue;
             }

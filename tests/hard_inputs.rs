@@ -1,0 +1,234 @@
+//! Issue 20's hard inputs: each must end (quickly, though no timing is
+//! asserted) with the right certified answer, or with `complete = false`
+//! and its leftovers — never a lost root, never a run of minutes.
+//!
+//! Rays starting exactly on the surface (the everyday secondary ray) put
+//! the hit at `t = 0` exactly, where `t`'s numerator vanishes at the root:
+//! exact settling used to contract the box with rationals doubling in size
+//! each step, without end. Now the root, a rational point there, is found
+//! exactly, and `t = 0` is decided as zero.
+
+use glam::DVec3;
+use rootclip::ray::{intersect, Hit, Patch, PatchSpec, Ray, RayOptions, RayOutcome};
+use rootclip::solve::SquareRoute;
+
+fn patch(json: &str) -> Patch {
+    let spec: PatchSpec = serde_json::from_str(json).expect("a patch spec");
+    Patch::from_spec(&spec).expect("a valid patch")
+}
+
+fn bicubic() -> Patch {
+    patch(
+        &std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/examples/data/seed000_bicubic.json"
+        ))
+        .unwrap(),
+    )
+}
+
+fn hits(patch: &Patch, ray: &Ray, opts: &RayOptions) -> Vec<Hit> {
+    match intersect(patch, ray, opts).expect("valid input") {
+        RayOutcome::Hits(h) => {
+            assert!(h.complete);
+            h.hits
+        }
+        other => panic!("unexpected outcome {other:?} for {ray:?}"),
+    }
+}
+
+/// One certified hit at `t = 0`, its `t` box within the range `[0, ∞]`
+/// (a certified hit never straddles the range's end).
+fn assert_hit_at_zero(patch: &Patch, origin: DVec3, dir: DVec3, routes: &[SquareRoute]) {
+    let ray = Ray::new(origin, dir).unwrap();
+    for &route in routes {
+        let hs = hits(patch, &ray, &RayOptions::default().with_route(route));
+        let at_zero: Vec<&Hit> = hs.iter().filter(|h| h.bx.t[0] <= 1e-12).collect();
+        assert_eq!(at_zero.len(), 1, "{route:?}: {hs:?}");
+        let h = at_zero[0];
+        assert!(h.is_certified(), "{route:?}: {h:?}");
+        assert!(h.bx.t[0] == 0.0 && h.bx.t[1] >= 0.0, "{route:?}: {h:?}");
+        assert!((h.point - origin).length() < 1e-9, "{route:?}: {h:?}");
+    }
+}
+
+const ALL_ROUTES: [SquareRoute; 4] = [
+    SquareRoute::Rect,
+    SquareRoute::Triangles,
+    SquareRoute::RectFatLine,
+    SquareRoute::RectHybrid,
+];
+
+#[test]
+fn bicubic_origin_on_the_surface() {
+    let p = bicubic();
+    let o = DVec3::new(1.5, 2.25, 0.0);
+    assert_hit_at_zero(&p, o, DVec3::new(0.0, -1.0, 0.0), &ALL_ROUTES);
+    assert_hit_at_zero(&p, o, DVec3::new(0.25, -1.0, 0.125), &ALL_ROUTES);
+}
+
+#[test]
+fn bicubic_origin_one_ulp_off_the_surface() {
+    let p = bicubic();
+    let ray = Ray::new(DVec3::new(1.5, 2.25f64.next_up(), 0.0), DVec3::new(0.0, -1.0, 0.0)).unwrap();
+    let hs = hits(&p, &ray, &RayOptions::default());
+    assert_eq!(hs.len(), 1, "{hs:?}");
+    assert!(hs[0].is_certified() && hs[0].bx.t[0] >= 0.0);
+}
+
+#[test]
+fn flat_bilinear_origin_on_the_surface() {
+    let p = patch(r#"{"type": "tensor", "degree": [1, 1], "points": [[0, 0, 0], [0, 1, 0], [1, 0, 0], [1, 1, 0]]}"#);
+    assert_hit_at_zero(&p, DVec3::new(0.3, 0.4, 0.0), DVec3::new(0.1, 0.2, 1.0), &ALL_ROUTES);
+    // Pointing into the patch from below and from above: the same hit.
+    assert_hit_at_zero(
+        &p,
+        DVec3::new(0.3, 0.4, 0.0),
+        DVec3::new(0.1, 0.2, -1.0),
+        &[SquareRoute::Rect],
+    );
+}
+
+#[test]
+fn quadratic_triangle_origin_on_the_surface() {
+    // z = uw + vw + 2uv; S(1/4, 1/4) = (1/4, 1/4, 3/8) exactly.
+    let p = patch(
+        r#"{"type": "triangle", "degree": 2, "points": [[0, 0, 0], [0.5, 0, 0.5], [1, 0, 0], [0, 0.5, 0.5], [0.5, 0.5, 1], [0, 1, 0]]}"#,
+    );
+    assert_hit_at_zero(
+        &p,
+        DVec3::new(0.25, 0.25, 0.375),
+        DVec3::new(0.3, -0.2, 1.0),
+        &[SquareRoute::Rect],
+    );
+}
+
+/// The hit at `t = 0` exactly is outside a range starting just above 0:
+/// decided exactly (no hit), not left undecided after a long contraction.
+#[test]
+fn origin_on_the_surface_with_a_range_above_zero() {
+    let p = bicubic();
+    let ray = Ray::new(DVec3::new(1.5, 2.25, 0.0), DVec3::new(0.0, -1.0, 0.0)).unwrap();
+    let opts = RayOptions::default().with_t_range(1e-300, f64::INFINITY);
+    let hs = hits(&p, &ray, &opts);
+    assert!(hs.iter().all(|h| h.bx.t[1] >= 1e-300), "{hs:?}");
+    assert!(hs.iter().all(|h| h.is_certified()), "{hs:?}");
+}
+
+/// Secondary rays: origins at dyadic parameters of the bicubic patch,
+/// directions spread over the sphere. Wherever the `f64` evaluation of the
+/// surface is exact the origin is on it and the ray has a certified hit at
+/// `t = 0`; every ray ends.
+#[test]
+fn secondary_rays_from_the_surface_end() {
+    let p = bicubic();
+    let mut at_zero = 0;
+    for k in 0..24 {
+        let (a, b) = ((k % 8) as f64 / 8.0 + 1.0 / 16.0, (k / 8) as f64 / 4.0 + 1.0 / 8.0);
+        let o = p.eval(a, b);
+        let phi = 2.399_963 * k as f64;
+        let z = 1.0 - 2.0 * (k as f64 + 0.5) / 24.0;
+        let r = (1.0 - z * z).sqrt();
+        let ray = Ray::new(o, DVec3::new(r * phi.cos(), r * phi.sin(), z)).unwrap();
+        // A ray tangent to the surface at its origin may end undecided;
+        // every outcome is accepted here, every certified hit checked.
+        if let RayOutcome::Hits(hs) = intersect(&p, &ray, &RayOptions::default()).expect("valid input") {
+            at_zero += hs.hits.iter().filter(|h| h.is_certified() && h.bx.t[0] == 0.0).count();
+            assert!(hs.hits.iter().all(|h| h.bx.t[0] >= 0.0 || !h.is_certified()), "{hs:?}");
+        }
+    }
+    assert!(at_zero > 0, "no ray started exactly on the surface");
+}
+
+/// Inputs whose numbers would come out non-finite (printed as JSON `null`)
+/// are rejected with a typed error: a direction subnormal in every
+/// component (`t` overflows), a subnormal weight (the points are 0/0).
+#[test]
+fn subnormal_directions_and_weights_are_typed_errors() {
+    use rootclip::ray::TensorPatch;
+    use rootclip::Error;
+    let r = Ray::new(DVec3::new(0.5, 0.5, 1.0), DVec3::new(0.0, 0.0, -1e-320));
+    assert!(matches!(r, Err(Error::NonFinite(_))), "{r:?}");
+    assert!(Ray::new(DVec3::ZERO, DVec3::new(0.0, 0.0, -1e-300)).is_ok());
+    let pts = vec![
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(0.0, 1.0, 0.0),
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(1.0, 1.0, 0.0),
+    ];
+    let p = TensorPatch::new(1, 1, pts.clone(), Some(vec![1e-320; 4]));
+    assert!(matches!(p, Err(Error::NonFinite(_))), "{p:?}");
+    assert!(TensorPatch::new(1, 1, pts, Some(vec![1e-300; 4])).is_ok());
+}
+
+/// One rule for `eps` on every route: positive and finite. An `eps` of 1 or
+/// more is valid on the box route as on the triangles (it stops early, still
+/// soundly: the root is certified or left in a cluster).
+#[test]
+fn eps_rule_is_the_same_on_every_route() {
+    use rootclip::poly::parse_polynomial;
+    use rootclip::solve::{solve, Domain, SolveOptions};
+    let f = parse_polynomial("u - 1/3").unwrap();
+    let g = parse_polynomial("v - 1/4").unwrap();
+    for route in ALL_ROUTES {
+        for eps in [1e-12, 1.0, 10.0] {
+            let opts = SolveOptions::default().with_eps(eps).with_square_route(route);
+            let sol = solve(&f, &g, Domain::Square, &opts).unwrap_or_else(|e| panic!("{route:?} eps {eps}: {e}"));
+            assert!(
+                sol.complete && sol.roots.len() + sol.clusters.len() == 1,
+                "{route:?} eps {eps}: {sol:?}"
+            );
+        }
+        for eps in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            let opts = SolveOptions::default().with_eps(eps).with_square_route(route);
+            assert!(solve(&f, &g, Domain::Square, &opts).is_err(), "{route:?} eps {eps}");
+        }
+    }
+}
+
+/// A direction so short that `t` overflows `f64` at the hit: a typed error,
+/// never a hit with `t = ∞` (JSON `null`).
+#[test]
+fn a_hit_whose_t_overflows_is_a_typed_error() {
+    use rootclip::Error;
+    let p = patch(r#"{"type": "tensor", "degree": [1, 1], "points": [[0, 0, 0], [0, 1, 0], [1, 0, 0], [1, 1, 0]]}"#);
+    let ray = Ray::new(DVec3::new(0.3, 0.4, 1e10), DVec3::new(0.0, 0.0, -1e-300)).unwrap();
+    let out = intersect(&p, &ray, &RayOptions::default());
+    assert!(matches!(out, Err(Error::NonFinite(_))), "{out:?}");
+    // The same ray with a longer direction: t = 1e10 / 1e-290, finite.
+    let ray = Ray::new(DVec3::new(0.3, 0.4, 1e10), DVec3::new(0.0, 0.0, -1e-290)).unwrap();
+    let hs = hits(&p, &ray, &RayOptions::default());
+    assert!(hs.len() == 1 && hs[0].is_certified() && hs[0].t.is_finite(), "{hs:?}");
+}
+
+/// A wall-clock deadline ends a solve with `complete = false` and its
+/// leftovers, never a wrong answer: with a zero timeout nothing is
+/// explored, on both domains and every square route; with a generous one
+/// the answer is the complete one.
+#[test]
+fn a_deadline_ends_a_solve_incomplete_with_leftovers() {
+    use rootclip::poly::parse_polynomial;
+    use rootclip::solve::{solve, Domain, SolveOptions};
+    use std::time::Duration;
+    let f = parse_polynomial("(u - 1/3)*(u - 2/3)").unwrap();
+    let g = parse_polynomial("(v - 1/4)*(v - 1/2)").unwrap();
+    for (domain, route) in [
+        (Domain::Triangle, SquareRoute::Triangles),
+        (Domain::Square, SquareRoute::Triangles),
+        (Domain::Square, SquareRoute::Rect),
+        (Domain::Square, SquareRoute::RectHybrid),
+    ] {
+        let opts = SolveOptions::default().with_square_route(route);
+        let sol = solve(&f, &g, domain, &opts.with_timeout(Duration::ZERO)).unwrap();
+        assert!(
+            !sol.complete && !sol.leftovers.is_empty(),
+            "{domain:?} {route:?}: {sol:?}"
+        );
+        let full = solve(&f, &g, domain, &opts.with_timeout(Duration::from_secs(600))).unwrap();
+        let want = if domain == Domain::Triangle { 3 } else { 4 };
+        assert!(
+            full.complete && full.roots.len() == want,
+            "{domain:?} {route:?}: {full:?}"
+        );
+    }
+}
