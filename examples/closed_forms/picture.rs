@@ -50,7 +50,7 @@ pub fn discriminants(c: &Quad) -> (f64, Q) {
 
 /// The figure, for a query whose certified hits lie in `roots` (t intervals).
 pub fn grazing_svg(c: &Quad, roots: &[[f64; 2]], h: f64) -> String {
-    let (w, hgt) = (860.0, 380.0);
+    let (w, hgt) = (860.0, 400.0);
     let mut s = format!(
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" \
 height=\"{hgt}\" viewBox=\"0 0 {w} {hgt}\" font-family=\"sans-serif\" font-size=\"12\">\n\
@@ -162,11 +162,13 @@ height=\"{hgt}\" viewBox=\"0 0 {w} {hgt}\" font-family=\"sans-serif\" font-size=
     let (df, de) = discriminants(c);
     let _ = writeln!(
         s,
-        "<text x=\"{px0}\" y=\"{:.0}\">t − {mid:.12} ∈ ±{half:.1e}; |f| ≤ {ymax:.1e}; dashed verticals: certified roots</text>\n\
-<text x=\"{px0}\" y=\"{:.0}\">B² − 4AC: {df:.3e} in f64, {:.3e} exactly</text>",
+        "<text x=\"{px0}\" y=\"{:.0}\">t − {mid:.12} ∈ ±{half:.1e}; |f| ≤ {ymax:.1e}</text>\n\
+<text x=\"{px0}\" y=\"{:.0}\">B² − 4AC: {df:.3e} in f64, {:.3e} exactly</text>\n\
+<text x=\"{px0}\" y=\"{:.0}\">dashed verticals: certified roots</text>",
         py0 + ph + 22.0,
         py0 + ph + 42.0,
-        rational_to_f64(&de)
+        rational_to_f64(&de),
+        py0 + ph + 62.0,
     );
     s.push_str("</svg>\n");
     s
