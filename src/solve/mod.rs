@@ -24,6 +24,7 @@
 
 pub(crate) mod degenerate;
 pub(crate) mod driver;
+mod envelope;
 pub(crate) mod fatcurve;
 pub(crate) mod krawczyk;
 pub(crate) mod linalg;

@@ -22,9 +22,7 @@
 
 use super::tensor::{len_of, project, stride};
 use crate::scalar::iv::Iv;
-
-/// The widening of hull crossings.
-const MARGIN: f64 = 4e-15;
+use crate::solve::envelope;
 
 /// The smallest ratio of a clipped box's side to its widest ([`keep_aspect`]).
 const MIN_ASPECT: f64 = 1e-3;
@@ -45,34 +43,7 @@ pub(crate) fn zero_span(c: &[Iv], deg: &[usize], d: usize) -> Option<(f64, f64)>
     if !lo[..=k].iter().chain(&hi[..=k]).all(|x| x.is_finite()) {
         return Some((0.0, 1.0));
     }
-    if k == 0 {
-        return (lo[0] <= 0.0 && hi[0] >= 0.0).then_some((0.0, 1.0));
-    }
-    let kf = k as f64;
-    let (mut a, mut b) = (f64::INFINITY, f64::NEG_INFINITY);
-    for i in 0..=k {
-        let xi = i as f64 / kf;
-        if lo[i] <= 0.0 && hi[i] >= 0.0 {
-            a = a.min(xi);
-            b = b.max(xi);
-        }
-        for j in i + 1..=k {
-            let xj = j as f64 / kf;
-            for yi in [lo[i], hi[i]] {
-                for yj in [lo[j], hi[j]] {
-                    if (yi < 0.0 && yj > 0.0) || (yi > 0.0 && yj < 0.0) {
-                        let x = xi + (xj - xi) * (yi / (yi - yj));
-                        a = a.min(x);
-                        b = b.max(x);
-                    }
-                }
-            }
-        }
-    }
-    if a > b {
-        return None;
-    }
-    Some(((a - MARGIN).max(0.0), (b + MARGIN).min(1.0)))
+    envelope::zero_span(&lo[..=k], &hi[..=k])
 }
 
 /// The spans of every axis where all of `eqs` may vanish; `None` if one is

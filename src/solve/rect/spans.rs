@@ -5,10 +5,8 @@
 
 use super::net::{at, jacobian_row, one_signed, Node, Shape, STACK};
 use crate::scalar::iv::Iv;
+use crate::solve::envelope;
 use crate::solve::linalg::{inverse2, smallest_singular_left};
-
-/// The widening of hull crossings (see the `rect` docs, step 4).
-const MARGIN: f64 = 4e-15;
 
 /// The smallest ratio of a clipped box's sides ([`keep_aspect`]).
 const MIN_ASPECT: f64 = 1e-3;
@@ -58,31 +56,7 @@ fn zero_span(p: &[Iv], sh: Shape, d: usize) -> Option<(f64, f64)> {
         lo[a] = l;
         hi[a] = h;
     }
-    let kf = k as f64;
-    let (mut a, mut b) = (f64::INFINITY, f64::NEG_INFINITY);
-    for i in 0..=k {
-        let xi = i as f64 / kf;
-        if lo[i] <= 0.0 && hi[i] >= 0.0 {
-            a = a.min(xi);
-            b = b.max(xi);
-        }
-        for j in i + 1..=k {
-            let xj = j as f64 / kf;
-            for yi in [lo[i], hi[i]] {
-                for yj in [lo[j], hi[j]] {
-                    if (yi < 0.0 && yj > 0.0) || (yi > 0.0 && yj < 0.0) {
-                        let x = xi + (xj - xi) * (yi / (yi - yj));
-                        a = a.min(x);
-                        b = b.max(x);
-                    }
-                }
-            }
-        }
-    }
-    if a > b {
-        return None;
-    }
-    Some(((a - MARGIN).max(0.0), (b + MARGIN).min(1.0)))
+    envelope::zero_span(&lo[..=k], &hi[..=k])
 }
 
 /// Spans from equations that are combinations of `f` and `g` (every root of
