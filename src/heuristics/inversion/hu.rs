@@ -17,7 +17,7 @@
 //!    the tangential component of `X`: `λ|T| + ½λ² t·S₂ = t·(X − S)`, the
 //!    root nearest the first-order `λ = t·(X − S)/|T|`.
 
-use super::{clamp, Failure, InvOptions, Outcome};
+use super::{step_in_square, Failure, InvOptions, Outcome};
 use crate::heuristics::jet;
 use crate::heuristics::linalg::above;
 use crate::ray::Patch;
@@ -195,24 +195,8 @@ pub(super) fn second_order(patch: &Patch, p: DVec3, start: [f64; 2], opts: &InvO
                 iterations: k + 1,
             };
         };
-        let raw = [uv[0] + step[0], uv[1] + step[1]];
-        let next = clamp(raw);
-        let moved = (next[0] - uv[0]).abs() + (next[1] - uv[1]).abs();
-        let clamped = next != raw;
-        uv = next;
-        if moved < 1e-14 {
-            // Stationary: a critical point of the distance if the step was
-            // not cut by the square; stuck against an edge otherwise.
-            return Outcome {
-                end: if clamped {
-                    Err(Failure::StuckAtEdge)
-                } else if opts.inversion {
-                    Err(Failure::Stationary)
-                } else {
-                    Ok(uv)
-                },
-                iterations: k + 1,
-            };
+        if let Some(out) = step_in_square(&mut uv, step, opts, k) {
+            return out;
         }
     }
     let d = (patch.eval(uv[0], uv[1]) - p).length();

@@ -300,6 +300,27 @@ fn clamp(uv: [f64; 2]) -> [f64; 2] {
     [uv[0].clamp(0.0, 1.0), uv[1].clamp(0.0, 1.0)]
 }
 
+/// Moves `uv` by `step`, clamped to the unit square. A move below `1e-14`
+/// (in the 1-norm) ends the iteration at step `k`: at a critical point of
+/// the distance if the step was not cut by the square (a failure in
+/// inversion mode), stuck against an edge otherwise.
+fn step_in_square(uv: &mut [f64; 2], step: [f64; 2], opts: &InvOptions, k: usize) -> Option<Outcome> {
+    let raw = [uv[0] + step[0], uv[1] + step[1]];
+    let next = clamp(raw);
+    let moved = (next[0] - uv[0]).abs() + (next[1] - uv[1]).abs();
+    *uv = next;
+    (moved < 1e-14).then(|| Outcome {
+        end: if next != raw {
+            Err(Failure::StuckAtEdge)
+        } else if opts.inversion {
+            Err(Failure::Stationary)
+        } else {
+            Ok(next)
+        },
+        iterations: k + 1,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -9,7 +9,7 @@
 //! and step, until `|P − S| ≤ ε₂` (Eq. (29)) or the step is below `10⁻¹⁴`
 //! (a critical point of the distance: the projection case).
 
-use super::{clamp, Failure, InvOptions, Outcome};
+use super::{step_in_square, Failure, InvOptions, Outcome};
 use crate::heuristics::jet;
 use crate::heuristics::linalg::above;
 use crate::ray::Patch;
@@ -47,24 +47,8 @@ pub(super) fn newton(patch: &Patch, p: DVec3, start: [f64; 2], opts: &InvOptions
         }
         let du = (-f * c + g * b) / det;
         let dv = (-g * a + f * b) / det;
-        let raw = [uv[0] + du, uv[1] + dv];
-        let next = clamp(raw);
-        let moved = (next[0] - uv[0]).abs() + (next[1] - uv[1]).abs();
-        let clamped = next != raw;
-        uv = next;
-        if moved < 1e-14 {
-            // Stationary: a critical point of the distance if the step was
-            // not cut by the square; stuck against an edge otherwise.
-            return Outcome {
-                end: if clamped {
-                    Err(Failure::StuckAtEdge)
-                } else if opts.inversion {
-                    Err(Failure::Stationary)
-                } else {
-                    Ok(uv)
-                },
-                iterations: k + 1,
-            };
+        if let Some(out) = step_in_square(&mut uv, [du, dv], opts, k) {
+            return out;
         }
     }
     let r = patch.eval(uv[0], uv[1]) - p;
