@@ -58,20 +58,30 @@ impl Tally {
     }
 }
 
-/// `(missed, invented, duplicates)` of the hits `ts` on one ray. A hit of
-/// the method near an uncertified rootclip hit is neither invented nor a
-/// match (rootclip cannot referee it; the bench counts those hits apart).
+/// `(missed, invented, duplicates)` of the hits `ts` on one ray. Each hit
+/// takes the nearest certified hit within the tolerance that no earlier hit
+/// took (two true hits closer than the tolerance stay two), else counts as
+/// a duplicate of the nearest taken one. A hit near only an uncertified
+/// rootclip hit is neither invented nor a match (rootclip cannot referee
+/// it; the header counts those).
 fn referee(ts: &[f64], answer: &Certified, tol: f64) -> (usize, usize, usize) {
-    let mut matched = vec![0usize; answer.certified.len()];
-    let mut invented = 0;
+    let gap = |t: f64, bx: [f64; 2]| (bx[0] - t).max(t - bx[1]).max(0.0);
+    let mut taken = vec![false; answer.certified.len()];
+    let (mut invented, mut duplicates) = (0, 0);
     for &t in ts {
-        match answer.certified.iter().position(|&bx| near(t, bx, tol)) {
-            Some(k) => matched[k] += 1,
-            None if answer.uncertified.iter().any(|&bx| near(t, bx, tol)) => {}
-            None => invented += 1,
+        let nearest = |free: bool| {
+            (0..taken.len())
+                .filter(|&k| taken[k] != free && near(t, answer.certified[k], tol))
+                .min_by(|&a, &b| gap(t, answer.certified[a]).total_cmp(&gap(t, answer.certified[b])))
+        };
+        if let Some(k) = nearest(true) {
+            taken[k] = true;
+        } else if nearest(false).is_some() {
+            duplicates += 1;
+        } else if !answer.uncertified.iter().any(|&bx| near(t, bx, tol)) {
+            invented += 1;
         }
     }
-    let missed = matched.iter().filter(|&&m| m == 0).count();
-    let duplicates = matched.iter().map(|&m| m.saturating_sub(1)).sum();
+    let missed = taken.iter().filter(|&&m| !m).count();
     (missed, invented, duplicates)
 }
