@@ -10,10 +10,13 @@ use std::io::{self, BufWriter, StdoutLock, Write};
 /// Standard output, locked once and buffered.
 pub(super) type Out = BufWriter<StdoutLock<'static>>;
 
+/// Writes a command's output, ending it with a newline.
+type Writer = Box<dyn FnOnce(&mut Out) -> io::Result<()>>;
+
 /// What a command prints. The command computes it in full before anything
 /// is written, so a failing command leaves standard output empty (one error
 /// line on stderr, exit 2); only the writing is left here.
-pub(super) struct Answer(Box<dyn FnOnce(&mut Out) -> io::Result<()>>);
+pub(super) struct Answer(Writer);
 
 impl Answer {
     /// The output `write` writes (ending it with a newline).
