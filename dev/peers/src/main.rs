@@ -118,14 +118,15 @@ fn load() -> Result<Surfaces, Box<dyn std::error::Error>> {
     Ok(Surfaces::new(Patch::from_spec(&spec)?, &grid)?)
 }
 
-/// The `t`s one method reports for one ray.
-fn run(s: &Surfaces, method: usize, ray: &Ray) -> Vec<f64> {
+/// The `t`s one method reports for one ray, and whether it flags the ray
+/// as doubtful (only brepkit's `RaySurface` says so).
+fn run(s: &Surfaces, method: usize, ray: &Ray) -> (Vec<f64>, bool) {
     match method {
         1 => s.brepkit_ray(ray),
-        2 => s.brepkit_line(ray),
-        3 => s.brepkit_curve(ray),
-        4 => s.curvo(ray),
-        _ => s.newton(ray),
+        2 => (s.brepkit_line(ray), false),
+        3 => (s.brepkit_curve(ray), false),
+        4 => (s.curvo(ray), false),
+        _ => (s.newton(ray), false),
     }
 }
 
@@ -160,14 +161,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         uncertified += answer.uncertified.len();
         degenerate += usize::from(answer.degenerate);
         let certified: Vec<f64> = answer.certified.iter().map(|b| 0.5 * (b[0] + b[1])).collect();
-        tallies[0].add(micros, &certified, &answer, args.tol, args.loose);
+        let doubt = degenerate_or_undecided(&answer);
+        tallies[0].add(micros, (&certified, doubt), &answer, args.tol, args.loose);
         for (k, &m) in args.methods.iter().enumerate().skip(1) {
-            let (micros, ts) = timed(args.reps, || run(&s, m, ray));
-            tallies[k].add(micros, &ts, &answer, args.tol, args.loose);
+            let (micros, (ts, flagged)) = timed(args.reps, || run(&s, m, ray));
+            tallies[k].add(micros, (&ts, flagged), &answer, args.tol, args.loose);
         }
     }
     report(&args, &tallies, uncertified, degenerate);
     Ok(())
+}
+
+/// Whether rootclip's own answer for the ray is in doubt.
+fn degenerate_or_undecided(answer: &Certified) -> bool {
+    answer.degenerate || !answer.uncertified.is_empty()
 }
 
 fn report(args: &Args, tallies: &[Tally], uncertified: usize, degenerate: usize) {
@@ -179,13 +186,21 @@ fn report(args: &Args, tallies: &[Tally], uncertified: usize, degenerate: usize)
         "rootclip: {} certified hits, {uncertified} uncertified, {degenerate} degenerate rays\n",
         tallies[0].hits
     );
-    println!("| method | µs/ray mean | median | p99 | max | hits | missed | invented | duplicates | missed / invented at {:e} |", args.loose);
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("| method | µs/ray mean | median | p99 | max | hits | missed | invented | duplicates | missed / invented at {:e} | rays flagged (hits missed there) |", args.loose);
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for (t, &m) in tallies.iter().zip(&args.methods) {
         let [mean, median, p99, max] = t.distribution();
         println!(
-            "| {} | {mean:.1} | {median:.1} | {p99:.1} | {max:.0} | {} | {} | {} | {} | {} / {} |",
-            METHODS[m].1, t.hits, t.missed, t.invented, t.duplicates, t.missed_loose, t.invented_loose
+            "| {} | {mean:.1} | {median:.1} | {p99:.1} | {max:.0} | {} | {} | {} | {} | {} / {} | {} ({}) |",
+            METHODS[m].1,
+            t.hits,
+            t.missed,
+            t.invented,
+            t.duplicates,
+            t.missed_loose,
+            t.invented_loose,
+            t.flagged,
+            t.missed_flagged
         );
     }
     let rc = tallies[0].distribution();

@@ -151,11 +151,12 @@ impl Surfaces {
 
     /// brepkit-math `RaySurface::hits`: Bézier subdivision of the prepared
     /// surface down to leaves of 1e-3 of its size, Newton in each leaf.
-    pub fn brepkit_ray(&self, ray: &Ray) -> Vec<f64> {
+    /// Also whether brepkit flags the ray as grazing (its count in doubt).
+    pub fn brepkit_ray(&self, ray: &Ray) -> (Vec<f64>, bool) {
         let (o, d) = (ray.origin(), ray.dir());
         let len = d.length();
         let hits = self.brepkit_ray.hits(bk_point(o), bk_vec(d / len), BREPKIT_REACH);
-        in_range(hits.hits.iter().map(|h| h.t / len))
+        (in_range(hits.hits.iter().map(|h| h.t / len)), hits.grazed)
     }
 
     /// curvo `find_intersection` of the surface with the segment

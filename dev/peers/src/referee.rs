@@ -21,6 +21,11 @@ pub struct Tally {
     pub missed_loose: usize,
     /// `invented` at the loose tolerance.
     pub invented_loose: usize,
+    /// Rays the method flags as doubtful (brepkit's `grazed`; rootclip's
+    /// undecided hits or degenerate rays).
+    pub flagged: usize,
+    /// Of `missed`, those on flagged rays.
+    pub missed_flagged: usize,
 }
 
 /// Whether `t` lies within `tol` (relative to `max(1, |t|)`) of the box.
@@ -30,13 +35,17 @@ fn near(t: f64, bx: [f64; 2], tol: f64) -> bool {
 }
 
 impl Tally {
-    /// Adds one ray: the method's hits `ts` against rootclip's answer,
-    /// at the tolerances `tol` and `loose`.
-    pub fn add(&mut self, micros: f64, ts: &[f64], answer: &Certified, tol: f64, loose: f64) {
+    /// Adds one ray: the method's hits `ts` (and whether it flagged the
+    /// ray) against rootclip's answer, at the tolerances `tol` and `loose`.
+    pub fn add(&mut self, micros: f64, (ts, flagged): (&[f64], bool), answer: &Certified, tol: f64, loose: f64) {
         self.micros.push(micros);
         self.hits += ts.len();
         let (missed, invented, duplicates) = referee(ts, answer, tol);
         self.missed += missed;
+        if flagged {
+            self.flagged += 1;
+            self.missed_flagged += missed;
+        }
         self.invented += invented;
         self.duplicates += duplicates;
         let (missed, invented, _) = referee(ts, answer, loose);
