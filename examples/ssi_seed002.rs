@@ -251,7 +251,9 @@ const TABLE4: [(usize, [f64; 4]); 12] = [
 ];
 
 fn load_patch(name: &str) -> Patch {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/data/ssi").join(name);
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("examples/data/ssi")
+        .join(name);
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let spec: PatchSpec = serde_json::from_str(&text).unwrap();
     Patch::from_spec(&spec).unwrap()
@@ -291,7 +293,10 @@ fn to_polyline(p: [f64; 2], line: &[[f64; 2]]) -> f64 {
 
 /// The share of the certified points within `r` (max-norm) of a method's points.
 fn covered(cert: &[[f64; 4]], pts: &[[f64; 4]], r: f64) -> f64 {
-    let n = cert.iter().filter(|c| pts.iter().any(|p| max_diff(**c, *p) <= r)).count();
+    let n = cert
+        .iter()
+        .filter(|c| pts.iter().any(|p| max_diff(**c, *p) <= r))
+        .count();
     n as f64 / cert.len().max(1) as f64
 }
 
@@ -310,7 +315,7 @@ fn svg_squares(lines: &[(Vec<[f64; 4]>, &str, bool)], marks: &[([f64; 4], &str)]
         );
         let map = |p: &[f64; 4]| (x0 + 360.0 * p[2 * k], 400.0 - 360.0 * p[2 * k + 1]);
         for (pts, style, closed) in lines {
-            let d: Vec<String> = pts.iter().map(|p| map(p)).map(|(x, y)| format!("{x:.1},{y:.1}")).collect();
+            let d: Vec<String> = pts.iter().map(&map).map(|(x, y)| format!("{x:.1},{y:.1}")).collect();
             let tag = if *closed { "polygon" } else { "polyline" };
             let _ = writeln!(s, "<{tag} points=\"{}\" {style}/>", d.join(" "));
         }
@@ -320,6 +325,20 @@ fn svg_squares(lines: &[(Vec<[f64; 4]>, &str, bool)], marks: &[([f64; 4], &str)]
         }
     }
     s + "</svg>\n"
+}
+
+/// The branches in model space, closed ones closed.
+fn curves_3d(cert: &Intersection) -> Vec<Vec<[f64; 3]>> {
+    cert.branches
+        .iter()
+        .map(|br| {
+            let mut c: Vec<[f64; 3]> = br.points.iter().map(|p| p.xyz).collect();
+            if br.closed && !c.is_empty() {
+                c.push(c[0]);
+            }
+            c
+        })
+        .collect()
 }
 
 /// Both patches as isoparametric lines and the curve, in an isometric view.
@@ -335,8 +354,12 @@ fn svg_3d(a: &Patch, b: &Patch, curves: &[Vec<[f64; 3]>]) -> String {
     ] {
         for i in 0..=10 {
             let c = i as f64 / 10.0;
-            let row: Vec<_> = (0..=40).map(|k| iso(patch.eval(c, k as f64 / 40.0).to_array())).collect();
-            let col: Vec<_> = (0..=40).map(|k| iso(patch.eval(k as f64 / 40.0, c).to_array())).collect();
+            let row: Vec<_> = (0..=40)
+                .map(|k| iso(patch.eval(c, k as f64 / 40.0).to_array()))
+                .collect();
+            let col: Vec<_> = (0..=40)
+                .map(|k| iso(patch.eval(k as f64 / 40.0, c).to_array()))
+                .collect();
             polys.push((row, style));
             polys.push((col, style));
         }
@@ -354,7 +377,10 @@ fn svg_3d(a: &Patch, b: &Patch, curves: &[Vec<[f64; 3]>]) -> String {
         hi = (hi.0.max(x), hi.1.max(y));
     }
     let scale = 560.0 / (hi.0 - lo.0).max(hi.1 - lo.1);
-    let pad = (20.0 + 0.5 * (560.0 - (hi.0 - lo.0) * scale), 20.0 + 0.5 * (560.0 - (hi.1 - lo.1) * scale));
+    let pad = (
+        20.0 + 0.5 * (560.0 - (hi.0 - lo.0) * scale),
+        20.0 + 0.5 * (560.0 - (hi.1 - lo.1) * scale),
+    );
     let mut s = String::from(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"600\" height=\"600\" viewBox=\"0 0 600 600\">\n<rect width=\"600\" height=\"600\" fill=\"white\"/>\n",
     );
@@ -417,9 +443,9 @@ fn example52(md: &mut String, dir: &std::path::Path) {
          **The pair below is a reconstruction, not the paper's.** The PDF garbled the control\n\
          points (four vectors of five numbers per surface where nine points in 3-D belong), and\n\
          the tables do not determine them: the 14 tabulated points of Example 5.2 sit in about five\n\
-         clusters, and the curve is unchanged by any affine map of space applied to both patches (a\n\
-         least-squares fit of two biquadratic nets to them leaves about nine directions free at the\n\
-         tables' rounding). `reconstruct_ex52.py` builds one pair consistent with the tables, each\n\
+         clusters; 11 pairs of coordinate nets (one coordinate of both nets, the constant among\n\
+         them) vanish on them to about the tables' rounding, where 4 would fix the pair up to a\n\
+         common affine map of space, which leaves the curve unchanged. `reconstruct_ex52.py` builds one pair consistent with the tables, each\n\
          choice stated there: both patches of bidegree (2, 2); `S1(u, v) = (u, v, c1(u, v))` a graph\n\
          over the unit square; `S2(s, t) = (X(s, t), Y(s, t), −c2(s, t))` with `X, Y` fitted so that\n\
          `(X, Y)(s_k, t_k) = (u_k, v_k)` at the tabulated points (least squares, Tikhonov toward the\n\
@@ -470,8 +496,9 @@ fn example52(md: &mut String, dir: &std::path::Path) {
         "rootclip: complete = {}, {} branch(es) ({} closed), {} crossings, {} turning points, {} boxes in\n\
          the start solves. Extended Newton from the paper's `x0 = (0.9994, 0.2501, 0.9994, 0.2502)`\n\
          (its garbled `(0.99940, 2.5010, 9.9940, 2.502)` read with the decimal points the tables\n\
-         suggest) reaches ({:.4}, {:.4}, {:.4}, {:.4}); the paper prints `q = (0.7274, 0.2327,\n\
-         0.7849, 0.2990)` (Table 2, row 0), {:.3} away in the max-norm. Distances in `(u, v, s, t)`\n\
+         suggest) reaches ({:.4}, {:.4}, {:.4}, {:.4}); the paper's start point is Table 2's row 0,\n\
+         `(0.7274, 0.2327, 0.7849, 0.2990)` (its text's garbled `q = (0.72740, 2.3270, 7.3490, 2.990)`\n\
+         has 0.7349 for 0.7849), {:.3} away in the max-norm. Distances in `(u, v, s, t)`\n\
          are max-norms; the continuation runs both ways from the start, as the paper's did.\n",
         cert.complete,
         cert.branches.len(),
@@ -525,10 +552,19 @@ fn example52(md: &mut String, dir: &std::path::Path) {
          curve. So Table 4 was not fitted, and is no check of the pair. Table 2's continuation\n\
          stalls, as Table 1's did on the circle, near (0.3825, 0.1551) on one side and (0.584, 0.515)\n\
          on the other; ours goes round the loop, and rootclip proves it is the whole intersection.\n",
-        TABLE2.iter().map(|(_, x)| off_pair_curve(&sys, *x)).fold(0.0f64, f64::max),
+        TABLE2
+            .iter()
+            .map(|(_, x)| off_pair_curve(&sys, *x))
+            .fold(0.0f64, f64::max),
         off_pair_curve(&sys, t4_last),
-        TABLE4.iter().map(|(_, x)| to_polyline([x[0], x[1]], &uv)).fold(0.0f64, f64::max),
-        TABLE4.iter().map(|(_, x)| to_polyline([x[2], x[3]], &st)).fold(0.0f64, f64::max)
+        TABLE4
+            .iter()
+            .map(|(_, x)| to_polyline([x[0], x[1]], &uv))
+            .fold(0.0f64, f64::max),
+        TABLE4
+            .iter()
+            .map(|(_, x)| to_polyline([x[2], x[3]], &st))
+            .fold(0.0f64, f64::max)
     );
     let _ = writeln!(
         md,
@@ -555,18 +591,7 @@ fn example52(md: &mut String, dir: &std::path::Path) {
         .collect();
     marks.extend(TABLE4.iter().map(|(_, x)| (*x, "fill=\"#2ca02c\"")));
     std::fs::write(dir.join("ex52_params.svg"), svg_squares(&lines, &marks)).unwrap();
-    let curves: Vec<Vec<[f64; 3]>> = cert
-        .branches
-        .iter()
-        .map(|br| {
-            let mut c: Vec<[f64; 3]> = br.points.iter().map(|p| p.xyz).collect();
-            if br.closed {
-                c.push(c[0]);
-            }
-            c
-        })
-        .collect();
-    std::fs::write(dir.join("ex52_3d.svg"), svg_3d(&a, &b, &curves)).unwrap();
+    std::fs::write(dir.join("ex52_3d.svg"), svg_3d(&a, &b, &curves_3d(&cert))).unwrap();
     let _ = writeln!(
         md,
         "## A peer: OpenCASCADE\n\n\
@@ -717,11 +742,13 @@ fn main() {
          sign of `t` flipped (a typo: with `t = −0.9353` it lies on the curve). Rows of Table 1\n\
          that belong to Example 5.2 (the PDF mixed the tables) are used there, below.\n"
     );
-    let _ = writeln!(md, "![the curve in the (u, v) square: rootclip (black), continuation (blue), RK4 marching (red, dashed)](ex51_uv.svg)\n");
+    let _ = writeln!(md, "![the curve in the (u, v) square: rootclip (black), continuation (blue), RK4 marching (red, dashed)](ex51_uv.svg)\n\n\
+         ![the two paraboloids (S1 blue, S2 orange) and the certified circle (black), isometric view](ex51_3d.svg)\n");
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("papers/surface-intersection");
     std::fs::create_dir_all(&dir).unwrap();
     example52(&mut md, &dir);
     std::fs::write(dir.join("README.md"), md).unwrap();
     std::fs::write(dir.join("ex51_uv.svg"), svg(&cert, &cont, &rk)).unwrap();
+    std::fs::write(dir.join("ex51_3d.svg"), svg_3d(&a, &b, &curves_3d(&cert))).unwrap();
     println!("wrote {}", dir.display());
 }

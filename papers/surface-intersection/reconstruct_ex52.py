@@ -3,8 +3,10 @@
 
 The PDF garbled the control points of the two Bezier surfaces of Example 5.2
 (vectors of five numbers for points in 3-D), and its tables do not pin the
-pair down (the tabulated points sit in a few clusters; any common affine map
-of space keeps the curve). This script builds ONE pair whose intersection
+pair down: the tabulated points sit in a few clusters, and 11 pairs of
+coordinate nets (the constant among them) vanish on them to about their
+rounding, where 4 would fix the pair up to a common affine map of space
+(`free_directions`). This script builds ONE pair whose intersection
 passes near the tabulated points, with every choice written out:
 
   A1  both patches have bidegree (2, 2) ("two quadratic Bezier surfaces").
@@ -74,7 +76,17 @@ def ridge(a, b, prior, lam):
     return np.linalg.lstsq(m, np.concatenate([b, np.sqrt(lam) * prior]), rcond=None)[0]
 
 
+def free_directions(pts, rel=1e-4):
+    """How many pairs of coordinate nets (9 + 9 values, one coordinate) vanish on the
+    tabulated points to about their rounding: right singular vectors of the
+    collocation matrix with singular value below `rel`, the constant included."""
+    rows = [np.concatenate([basis22(p[0], p[1]), -basis22(p[2], p[3])]) for p in pts]
+    sv = np.linalg.svd(np.array(rows), compute_uv=False)
+    return 18 - len(sv) + int(np.sum(sv < rel * 1.5))
+
+
 def main():
+    print(f"free directions at the tables' rounding (constant included): {free_directions(FIT)}")
     grid = np.array([[i / 2, j / 2] for i in range(3) for j in range(3)])
     a = np.array([basis22(p[2], p[3]) for p in FIT])
     x_net = ridge(a, np.array([p[0] for p in FIT]), grid[:, 0], 1e-6).reshape(3, 3)
@@ -90,13 +102,13 @@ def main():
     if dot < 0:
         c2 = -c2
     z1, z2 = conic_net(c1), -conic_net(c2)
-    net1 = [[round(grid[3 * i + j][0], 4), round(grid[3 * i + j][1], 4), round(z1[i, j], 4)] for i in range(3) for j in range(3)]
-    net2 = [[round(x_net[i, j], 4), round(y_net[i, j], 4), round(z2[i, j], 4)] for i in range(3) for j in range(3)]
+    net1 = [[float(round(grid[3 * i + j][0], 4)), float(round(grid[3 * i + j][1], 4)), float(round(z1[i, j], 4))] for i in range(3) for j in range(3)]
+    net2 = [[float(round(x_net[i, j], 4)), float(round(y_net[i, j], 4)), float(round(z2[i, j], 4))] for i in range(3) for j in range(3)]
     for name, net in [("a", net1), ("b", net2)]:
         with open(f"examples/data/ssi/seed002_ex52_{name}.json", "w") as f:
             json.dump({"type": "tensor", "degree": [2, 2], "points": net}, f)
             f.write("\n")
-    print("S1", net1, "\nS2", net2)
+    print("S1", json.dumps(net1), "\nS2", json.dumps(net2))
 
 
 if __name__ == "__main__":
