@@ -353,7 +353,9 @@ WHY_OCC = {
 WHY_RC = {
     "tiny_loop": "the tracer stops at 45 degrees round a loop of radius 1e-4 (parameters), from both "
     "turning points, whatever `--tol` and however steep the crossing (the bump scaled by 1e4 fails the "
-    "same way; radius 1e-3 is traced and closed): flagged `unfinished`, a limit of `ssi::trace`",
+    "same way; radius 1e-3 is traced and closed): flagged `unfinished`. The tracer's Newton on the hyperplane "
+    "(`System::correct`) accepts only steps below 1e-14 absolute; with residuals at rounding level and a "
+    "derivative across the curve of ~1e-4 its steps stay at 1e-14 to 8e-14",
     "edge_twice_shared": "the curve meets both patches' edges at the same points, so the boundary "
     "systems' roots lie on their own domains' boundaries (`undecided`); the trace from the turning point "
     "ends there `unfinished`, and the other half of the arc (from the turning point the other way) is "
