@@ -3,10 +3,11 @@
 //! sharper ingredients, since a leaf is where rounding hurts most.
 //!
 //! * `F(x̃)` is evaluated **exactly** at the float point `x̃` from the
-//!   coefficients' midpoints (rational de Casteljau), then widened by the
-//!   largest coefficient radius (the Bernstein basis is a non-negative
-//!   partition of unity, so a coefficient error of at most `r` moves the
-//!   value by at most `r`), then enclosed in floats outward.
+//!   coefficients' midpoints (rational de Casteljau), then widened by a
+//!   float bound `r` of the largest coefficient radius (the Bernstein basis
+//!   is a non-negative partition of unity, so a coefficient error of at
+//!   most `r` moves the value by at most `r`), then enclosed in floats
+//!   outward.
 //! * `F'(X)` is the enclosure over `X` of the derivatives computed once on
 //!   the whole domain (interval de Casteljau with parameter ranges), not the
 //!   hull of a restricted polynomial's differences, whose rounding is
@@ -17,52 +18,66 @@
 //! resolve.
 
 use super::tensor::{derivative, eval_box};
-use crate::scalar::iv::Iv;
+use crate::scalar::iv::{up, Iv};
 use crate::scalar::rational_to_interval;
 use crate::solve::krawczyk::Verdict;
 use num_rational::BigRational;
 use num_traits::Zero;
 
 /// A square system on the domain with its derivatives.
+///
+/// The derivatives and radii are built on first use: most solves certify
+/// every zero by the local test and never reach a leaf.
 pub(crate) struct GlobalSystem<'a, const N: usize> {
     deg: [[usize; N]; N],
     c: &'a [Vec<Iv>],
+    parts: std::cell::OnceCell<Parts>,
+}
+
+/// What [`GlobalSystem`] derives from the coefficients.
+struct Parts {
     /// `d[e][k]`: degrees and coefficients of `∂f_e/∂x_k`.
     d: Vec<Vec<(Vec<usize>, Vec<Iv>)>>,
-    /// Largest coefficient radius of each equation (exact rational).
+    /// An upper bound of each equation's largest coefficient radius
+    /// (exact rational of a float).
     radius: Vec<BigRational>,
+}
+
+/// An upper bound of `max(hi − mid, mid − lo)` over the coefficients, in
+/// `f64`: each difference rounded to nearest, then moved up by [`up`] (so
+/// it is at least the exact one).
+fn radius_bound(eq: &[Iv]) -> f64 {
+    eq.iter()
+        .filter(|x| x.lo != x.hi)
+        .map(|x| {
+            let m = x.mid();
+            up((x.hi - m).max(m - x.lo))
+        })
+        .fold(0.0f64, f64::max)
 }
 
 impl<'a, const N: usize> GlobalSystem<'a, N> {
     pub(crate) fn new(deg: [[usize; N]; N], c: &'a [Vec<Iv>]) -> Self {
-        let d = (0..N)
-            .map(|e| (0..N).map(|k| derivative(&c[e], &deg[e], k)).collect())
-            .collect();
-        let radius = c
-            .iter()
-            .map(|eq| {
-                eq.iter()
-                    .filter(|x| x.lo != x.hi)
-                    .map(|x| {
-                        let (m, lo, hi) = (q(x.mid()), q(x.lo), q(x.hi));
-                        let a = &hi - &m;
-                        let b = &m - &lo;
-                        if a > b {
-                            a
-                        } else {
-                            b
-                        }
-                    })
-                    .fold(BigRational::zero(), |a, b| if b > a { b } else { a })
-            })
-            .collect();
-        Self { deg, c, d, radius }
+        Self {
+            deg,
+            c,
+            parts: std::cell::OnceCell::new(),
+        }
+    }
+
+    fn parts(&self) -> &Parts {
+        self.parts.get_or_init(|| Parts {
+            d: (0..N)
+                .map(|e| (0..N).map(|k| derivative(&self.c[e], &self.deg[e], k)).collect())
+                .collect(),
+            radius: self.c.iter().map(|eq| q(radius_bound(eq))).collect(),
+        })
     }
 
     /// `f_e(x)` enclosed (module docs: exact, plus the radius).
     fn value(&self, e: usize, x: &[f64; N]) -> Iv {
         let v = eval_exact(&self.c[e], &self.deg[e], x);
-        let r = &self.radius[e];
+        let r = &self.parts().radius[e];
         let lo = rational_to_interval(&(&v - r)).inf();
         let hi = rational_to_interval(&(&v + r)).sup();
         Iv::new(lo, hi)
@@ -71,7 +86,7 @@ impl<'a, const N: usize> GlobalSystem<'a, N> {
     fn jacobian(&self, x: &[[f64; 2]; N]) -> [[Iv; N]; N] {
         std::array::from_fn(|e| {
             std::array::from_fn(|k| {
-                let (deg, c) = &self.d[e][k];
+                let (deg, c) = &self.parts().d[e][k];
                 eval_box(c, deg, &x[..])
             })
         })
