@@ -201,6 +201,21 @@ impl System {
     /// The tube test of the module docs on `P × Y` (`y` the three axes
     /// other than `p`, in order): `Some(K)` when `K(P, Y) ⊂ int Y`.
     pub(crate) fn tube(&self, p: usize, pr: [f64; 2], y: [[f64; 2]; 3]) -> Option<[[f64; 2]; 3]> {
+        let k = self.krawczyk(p, pr, y)?;
+        let mut out = [[0.0; 2]; 3];
+        for r in 0..3 {
+            if !k[r].inside_open(y[r][0], y[r][1]) {
+                return None;
+            }
+            out[r] = [k[r].lo, k[r].hi];
+        }
+        Some(out)
+    }
+
+    /// `K(P, Y)` of the module docs, finite; `None` when the midpoint
+    /// Jacobian is singular or a bound is not finite. Outside a tube test
+    /// it only proposes (a box to try next).
+    pub(crate) fn krawczyk(&self, p: usize, pr: [f64; 2], y: [[f64; 2]; 3]) -> Option<[Iv; 3]> {
         let q = others(p);
         let mut full: Box4 = [[0.0; 2]; 4];
         full[p] = pr;
@@ -246,7 +261,7 @@ impl System {
                 row(r, &direct).meet(mv).unwrap_or(mv)
             })
         };
-        let mut out = [[0.0; 2]; 3];
+        let mut out = [Iv::point(0.0); 3];
         for r in 0..3 {
             let cf = cfs[r];
             let mut s = Iv::point(ym[r]).sub(cf);
@@ -257,10 +272,10 @@ impl System {
                 }
                 s = s.add(m.mul(Iv::new(y[c][0], y[c][1]).sub(Iv::point(ym[c]))));
             }
-            if !(s.is_finite() && s.inside_open(y[r][0], y[r][1])) {
+            if !s.is_finite() {
                 return None;
             }
-            out[r] = [s.lo, s.hi];
+            out[r] = s;
         }
         Some(out)
     }

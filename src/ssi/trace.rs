@@ -300,28 +300,38 @@ impl Tracer<'_> {
 
     /// The tube around the step `x → xn` (midpoint `xm`) along axis `p`,
     /// holding the previous point's box; `None` if not proven.
+    ///
+    /// The first `Y` is the hull of the three points and the previous box,
+    /// padded by a quarter of its extent and a tenth of the step on each
+    /// axis: an axis the arc barely moves along must still absorb the
+    /// wrapping `(I − C·∂_y F)·(Y − ỹ)` of the wide ones, which grows with
+    /// the step, not with its own extent. The second is that `Y` joined
+    /// with `K(P, Y)` widened by a quarter of its width (ε-inflation).
     fn prove(&self, x: &[f64; 4], xm: &[f64; 4], xn: &[f64; 4], p: usize, xbox: &Box4) -> Option<Box4> {
         let q = others(p);
         let len = (xn[p] - x[p]).abs();
         let pad = 1e-3 * len + (xbox[p][1] - xbox[p][0]) + 1e-13;
         let pr = [x[p].min(xn[p]) - pad, x[p].max(xn[p]) + pad];
-        for grow in [0.25, 1.0] {
-            let y: [[f64; 2]; 3] = std::array::from_fn(|k| {
-                let c = q[k];
-                let lo = x[c].min(xm[c]).min(xn[c]).min(xbox[c][0]);
-                let hi = x[c].max(xm[c]).max(xn[c]).max(xbox[c][1]);
-                let r = grow * (hi - lo) + 0.05 * grow * len + 1e-12;
-                [lo - r, hi + r]
-            });
-            if self.sys.tube(p, pr, y).is_some() {
+        let mut y: [[f64; 2]; 3] = std::array::from_fn(|k| {
+            let c = q[k];
+            let lo = x[c].min(xm[c]).min(xn[c]).min(xbox[c][0]);
+            let hi = x[c].max(xm[c]).max(xn[c]).max(xbox[c][1]);
+            let r = 0.25 * (hi - lo) + 0.1 * len + 1e-12;
+            [lo - r, hi + r]
+        });
+        for _ in 0..2 {
+            let k = self.sys.krawczyk(p, pr, y)?;
+            if (0..3).all(|r| k[r].inside_open(y[r][0], y[r][1])) {
                 let mut tube: Box4 = [pr; 4];
-                for (k, &c) in q.iter().enumerate() {
-                    tube[c] = y[k];
+                for (i, &c) in q.iter().enumerate() {
+                    tube[c] = y[i];
                 }
-                if inside(xbox, &tube) {
-                    return Some(tube);
-                }
+                return inside(xbox, &tube).then_some(tube);
             }
+            y = std::array::from_fn(|r| {
+                let w = 0.25 * (k[r].hi - k[r].lo) + 1e-12;
+                [y[r][0].min(k[r].lo - w), y[r][1].max(k[r].hi + w)]
+            });
         }
         None
     }
