@@ -201,21 +201,13 @@ impl System {
     /// The tube test of the module docs on `P × Y` (`y` the three axes
     /// other than `p`, in order): `Some(K)` when `K(P, Y) ⊂ int Y`.
     pub(crate) fn tube(&self, p: usize, pr: [f64; 2], y: [[f64; 2]; 3]) -> Option<[[f64; 2]; 3]> {
-        let k = self.krawczyk(p, pr, y)?;
-        let mut out = [[0.0; 2]; 3];
-        for r in 0..3 {
-            if !k[r].inside_open(y[r][0], y[r][1]) {
-                return None;
-            }
-            out[r] = [k[r].lo, k[r].hi];
-        }
-        Some(out)
+        let jac = self.jacobian_box(p, pr, &y)?;
+        inside_k(&self.krawczyk(p, pr, y, &jac)?, &y)
     }
 
-    /// `K(P, Y)` of the module docs, finite; `None` when the midpoint
-    /// Jacobian is singular or a bound is not finite. Outside a tube test
-    /// it only proposes (a box to try next).
-    pub(crate) fn krawczyk(&self, p: usize, pr: [f64; 2], y: [[f64; 2]; 3]) -> Option<[Iv; 3]> {
+    /// An enclosure of `∂_y F` (columns: the axes other than `p`) over
+    /// `P × Y`; `None` if not finite.
+    pub(crate) fn jacobian_box(&self, p: usize, pr: [f64; 2], y: &[[f64; 2]; 3]) -> Option<[[Iv; 3]; 3]> {
         let q = others(p);
         let mut full: Box4 = [[0.0; 2]; 4];
         full[p] = pr;
@@ -228,8 +220,19 @@ impl System {
                 eval_box(c, deg, &full)
             })
         });
-        if jac.iter().flatten().any(|x| !x.is_finite()) {
-            return None;
+        jac.iter().flatten().all(|x| x.is_finite()).then_some(jac)
+    }
+
+    /// `K(P, Y)` of the module docs, with `jac` an enclosure of `∂_y F`
+    /// over `P × Y` (or over any box holding it); `None` when the midpoint
+    /// Jacobian is singular or a bound is not finite. Outside a tube test
+    /// it only proposes (a box to try next).
+    pub(crate) fn krawczyk(&self, p: usize, pr: [f64; 2], y: [[f64; 2]; 3], jac: &[[Iv; 3]; 3]) -> Option<[Iv; 3]> {
+        let q = others(p);
+        let mut full: Box4 = [[0.0; 2]; 4];
+        full[p] = pr;
+        for (k, &c) in q.iter().enumerate() {
+            full[c] = y[k];
         }
         let cm = inverse::<3>(jac.map(|r| r.map(Iv::mid)))?;
         let ym: [f64; 3] = std::array::from_fn(|k| 0.5 * y[k][0] + 0.5 * y[k][1]);
@@ -280,6 +283,36 @@ impl System {
         Some(out)
     }
 
+    /// As [`System::certify_point`], inside a proven tube: `jac` encloses
+    /// `∂_y F` over `tube`, so over every box `Y ⊂ tube` on the hyperplane,
+    /// and only `F(x_p, ỹ)` is evaluated. `None` if no box of radius
+    /// `1e-12`…`1e-8` (relative) inside the tube proves it.
+    pub(crate) fn certify_in(&self, x: &[f64; 4], p: usize, tube: &Box4, jac: &[[Iv; 3]; 3]) -> Option<Box4> {
+        let q = others(p);
+        let pr = [x[p], x[p]];
+        if !(tube[p][0] <= pr[0] && pr[1] <= tube[p][1]) {
+            return None;
+        }
+        for r in [1e-12, 1e-10, 1e-8] {
+            let y: [[f64; 2]; 3] = std::array::from_fn(|k| {
+                let c = x[q[k]];
+                let rad = r * (1.0 + c.abs());
+                [c - rad, c + rad]
+            });
+            if !(0..3).all(|k| tube[q[k]][0] <= y[k][0] && y[k][1] <= tube[q[k]][1]) {
+                return None;
+            }
+            if let Some(k) = self.krawczyk(p, pr, y, jac).and_then(|k| inside_k(&k, &y)) {
+                let mut out: Box4 = [[x[p], x[p]]; 4];
+                for (i, &c) in q.iter().enumerate() {
+                    out[c] = k[i];
+                }
+                return Some(out);
+            }
+        }
+        None
+    }
+
     /// Certifies the curve point near `x` on the hyperplane `x_p = x[p]`:
     /// a box `Y` around it with `K ⊂ int Y`, returning `K`; `None` if no box
     /// of radius `1e-12`…`1e-6` (relative) proves it.
@@ -305,6 +338,18 @@ impl System {
         }
         None
     }
+}
+
+/// `K` as float bounds when it lies in the interior of `y`.
+fn inside_k(k: &[Iv; 3], y: &[[f64; 2]; 3]) -> Option<[[f64; 2]; 3]> {
+    let mut out = [[0.0; 2]; 3];
+    for r in 0..3 {
+        if !k[r].inside_open(y[r][0], y[r][1]) {
+            return None;
+        }
+        out[r] = [k[r].lo, k[r].hi];
+    }
+    Some(out)
 }
 
 /// The three axes other than `p`, in order.
