@@ -44,7 +44,9 @@ fn noise(seed: u64) -> impl Fn(usize, usize) -> f64 {
 fn bicubic(seed: u64) -> (Patch, Patch) {
     let (za, zb) = (noise(seed), noise(seed + 100));
     let a = field(3, 0.0, 0.0, 1.0, 0.0, move |i, j| 0.3 * za(i, j));
-    let b = field(3, -0.1, -0.2, 1.2, 0.4, move |i, j| 0.25 * zb(i, j) + 0.1 * i as f64 - 0.05);
+    let b = field(3, -0.1, -0.2, 1.2, 0.4, move |i, j| {
+        0.25 * zb(i, j) + 0.1 * i as f64 - 0.05
+    });
     (a, b)
 }
 

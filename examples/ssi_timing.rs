@@ -37,7 +37,10 @@ fn noise(seed: u64) -> impl Fn(usize, usize) -> f64 {
 fn run(name: &str, a: &Patch, b: &Patch, reps: usize) {
     // `SSI_REPS=1` for profiling runs (callgrind, perf); `SSI_ONLY=text`
     // runs only the cases whose name holds it.
-    let reps = std::env::var("SSI_REPS").ok().and_then(|r| r.parse().ok()).unwrap_or(reps);
+    let reps = std::env::var("SSI_REPS")
+        .ok()
+        .and_then(|r| r.parse().ok())
+        .unwrap_or(reps);
     let opts = SsiOptions::default();
     if std::env::var("SSI_ONLY").is_ok_and(|only| !name.contains(&only)) {
         return;

@@ -235,7 +235,12 @@ mod tests {
             })
             .collect();
         let iv: Vec<Iv> = c.iter().map(|&v| Iv::point(v)).collect();
-        for x in [[0.3, 0.7, 0.1], [0.0, 1.0, 0.5], [-1e-3, 1.000001, 0.123456789], [1e-300, 0.5, 2.0]] {
+        for x in [
+            [0.3, 0.7, 0.1],
+            [0.0, 1.0, 0.5],
+            [-1e-3, 1.000001, 0.123456789],
+            [1e-300, 0.5, 2.0],
+        ] {
             assert_eq!(eval_exact(&iv, &deg, &x), eval_rational(&c, &deg, &x));
         }
         let (m, k) = dyadic(0.75);
