@@ -339,7 +339,7 @@ impl Tracer<'_> {
     /// holding the previous point's box; `None` if not proven.
     ///
     /// The first `Y` is the hull of the three points and the previous box,
-    /// padded by a quarter of its extent and a tenth of the step on each
+    /// padded by a quarter of its extent and a fifth of the step on each
     /// axis: an axis the arc barely moves along must still absorb the
     /// wrapping `(I − C·∂_y F)·(Y − ỹ)` of the wide ones, which grows with
     /// the step, not with its own extent. The second is that `Y` joined
@@ -353,7 +353,7 @@ impl Tracer<'_> {
             let c = q[k];
             let lo = x[c].min(xm[c]).min(xn[c]).min(xbox[c][0]);
             let hi = x[c].max(xm[c]).max(xn[c]).max(xbox[c][1]);
-            let r = 0.25 * (hi - lo) + 0.1 * len + 1e-12;
+            let r = 0.25 * (hi - lo) + 0.2 * len + 1e-12;
             [lo - r, hi + r]
         });
         for _ in 0..2 {
