@@ -260,10 +260,7 @@ impl System {
                 let (deg, c) = &self.df[e][p];
                 eval_box(c, deg, &at)
             });
-            std::array::from_fn(|r| {
-                let mv = row(r, &f0).add(row(r, &fp).mul(dp));
-                mv
-            })
+            std::array::from_fn(|r| row(r, &f0).add(row(r, &fp).mul(dp)))
         };
         let mut out = [Iv::point(0.0); 3];
         for r in 0..3 {
