@@ -176,9 +176,19 @@ impl System {
 
     /// Newton's method on `F(x) = 0` with `x_p` fixed (the curve cut by the
     /// hyperplane `x_p = x[p]`), from `x`; `None` if it does not converge
-    /// within 12 steps to `|Δ| ≤ 1e-14`.
+    /// within 12 steps.
+    ///
+    /// Converged means a step below `1e-14`, or a step below `1e-8` that is
+    /// no longer than half the one before: the iteration has reached the
+    /// rounding floor of `F`. Where the curve's derivative across the
+    /// hyperplane is small (a loop of radius `1e-4` has `∂_y F ≈ 1e-4`),
+    /// that floor, the rounding of `F` divided by `∂_y F`, lies above
+    /// `1e-14`, and the steps wander at `1e-14 … 1e-13` for ever. This only
+    /// proposes: the point is accepted or refused by the Krawczyk
+    /// certificate.
     pub(crate) fn correct(&self, mut x: [f64; 4], p: usize) -> Option<[f64; 4]> {
         let q = others(p);
+        let mut last = f64::INFINITY;
         for _ in 0..12 {
             let (f, j) = self.value_jacobian(&x);
             let y = inverse::<3>(std::array::from_fn(|r| q.map(|c| j[r][c])))?;
@@ -191,9 +201,10 @@ impl System {
             if !x.iter().all(|v| v.is_finite()) || x.iter().any(|v| v.abs() > 10.0) {
                 return None;
             }
-            if size <= 1e-14 {
+            if size <= 1e-14 || (size <= 1e-8 && size > 0.5 * last) {
                 return Some(x);
             }
+            last = size;
         }
         None
     }
