@@ -50,7 +50,11 @@
 //!   region), possibly overlapping patches (an equation that may vanish
 //!   identically, i.e. a 2-dimensional intersection), or an unfinished
 //!   branch (a step proven nowhere, a budget). Branches listed are still
-//!   right as far as their certified points go.
+//!   right as far as their certified points go, and each is traced as far
+//!   as it can be: from a crossing inward, from a turning point both ways
+//!   (an unfinished branch through a turning point has both its ends in
+//!   `singular`). A part of a branch that stopped unfinished may then be
+//!   listed twice, traced from a crossing and from a turning point.
 //!
 //! A triangular patch is intersected as the tensor patch
 //! `(σ, τ) ↦ T(σ(1 − τ), στ)` (its corner `u = v = 0` the collapsed edge
@@ -377,18 +381,19 @@ fn intersect_pair(a: &TensorPatch, b: &TensorPatch, opts: &SsiOptions) -> Inters
     };
     let mut used_cross = vec![false; starts.crossings.len()];
     let mut used_turn = vec![false; starts.turning.len()];
-    let mut traces: Vec<(Trace, bool)> = Vec::new();
+    // Each trace with the end of its other half (traces from a turning point).
+    let mut traces: Vec<(Trace, Option<End>)> = Vec::new();
     for k in 0..starts.crossings.len() {
         if used_cross[k] {
             continue;
         }
         used_cross[k] = true;
-        let tr = tracer.trace(Start::Crossing(k), starts.crossings[k]);
+        let tr = tracer.trace(Start::Crossing(k), starts.crossings[k], false);
         if let End::Crossing(e) = tr.end {
             used_cross[e] = true;
         }
         tr.turning.iter().for_each(|&t| used_turn[t] = true);
-        traces.push((tr, false));
+        traces.push((tr, None));
     }
     for k in 0..starts.turning.len() {
         let t = &starts.turning[k];
@@ -397,27 +402,27 @@ fn intersect_pair(a: &TensorPatch, b: &TensorPatch, opts: &SsiOptions) -> Inters
             continue;
         }
         used_turn[k] = true;
-        let tr = tracer.trace(Start::Turning(k), *t);
-        if let End::Crossing(e) = tr.end {
-            if used_cross[e] {
-                // The arc through crossing `e` is unique, and was traced.
-                continue;
-            }
-        }
+        let (tr, other) = trace_both_ways(&tracer, k, t);
         tr.turning.iter().for_each(|&t| used_turn[t] = true);
-        traces.push((tr, true));
+        traces.push((tr, other));
     }
-    for (tr, _) in traces {
+    for (tr, other) in traces {
         let closed = tr.end == End::Closed;
-        if let End::Stuck(bx) = tr.end {
-            out.complete = false;
-            let (ra, rb) = split(&bx);
-            out.singular.push(Singular {
-                kind: SingularKind::Unfinished,
-                a: ra,
-                b: rb,
-                reason: "a branch could not be traced on from here (no step proven, or the point budget)".into(),
-            });
+        let ends = match other {
+            Some(o) if o != tr.end => vec![tr.end, o],
+            _ => vec![tr.end],
+        };
+        for end in ends {
+            if let End::Stuck(bx) = end {
+                out.complete = false;
+                let (ra, rb) = split(&bx);
+                out.singular.push(Singular {
+                    kind: SingularKind::Unfinished,
+                    a: ra,
+                    b: rb,
+                    reason: "a branch could not be traced on from here (no step proven, or the point budget)".into(),
+                });
+            }
         }
         let points: Vec<CurvePoint> = tr
             .points
@@ -434,6 +439,40 @@ fn intersect_pair(a: &TensorPatch, b: &TensorPatch, opts: &SsiOptions) -> Inters
         out.branches.push(Branch { closed, points });
     }
     out
+}
+
+/// The branch through turning point `k` (box `t`), traced along its
+/// tangent and, unless that closes a loop, against it, the halves joined at
+/// the turning point; with the end of the second half.
+///
+/// A half may end at a crossing already traced from: the trace from there
+/// then stopped unfinished on the way here (the arc through a crossing is
+/// unique, and a finished trace would hold this turning point in a tube),
+/// and the part between its stop and this point is traced only from here.
+fn trace_both_ways(tracer: &Tracer, k: usize, t: &Box4) -> (Trace, Option<End>) {
+    let fwd = tracer.trace(Start::Turning(k), *t, false);
+    if fwd.end == End::Closed {
+        return (fwd, None);
+    }
+    let bwd = tracer.trace(Start::Turning(k), *t, true);
+    if bwd.end == End::Closed {
+        // The loop, whole, the other way round: `fwd` was part of it.
+        return (bwd, None);
+    }
+    let mut tr = Trace {
+        points: bwd.points.into_iter().rev().collect(),
+        tubes: bwd.tubes,
+        turning: bwd.turning,
+        end: fwd.end,
+    };
+    tr.points.extend(fwd.points.into_iter().skip(1));
+    tr.tubes.extend(fwd.tubes);
+    for j in fwd.turning {
+        if !tr.turning.contains(&j) {
+            tr.turning.push(j);
+        }
+    }
+    (tr, Some(bwd.end))
 }
 
 fn inside(a: &Box4, b: &Box4) -> bool {

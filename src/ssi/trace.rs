@@ -148,7 +148,9 @@ impl Tracer<'_> {
     }
 
     /// Traces from `start` (whose certified box is `sbox`) until an end.
-    pub(crate) fn trace(&self, start: Start, sbox: Box4) -> Trace {
+    /// From a turning point, along the tangent at its centre, or against it
+    /// when `backward` (a crossing has one way in; `backward` is ignored).
+    pub(crate) fn trace(&self, start: Start, sbox: Box4, backward: bool) -> Trace {
         let x0 = center(&sbox);
         let mut tr = Trace {
             points: vec![(x0, true)],
@@ -162,8 +164,9 @@ impl Tracer<'_> {
         let Some(t0) = self.sys.tangent(&x0) else {
             return tr;
         };
-        let mut dir = t0;
+        let mut dir = if backward { t0.map(|c| -c) } else { t0 };
         if let Start::Crossing(_) = start {
+            dir = t0;
             // Inward across the face(s) the crossing lies on.
             let faces: Vec<(usize, f64)> = (0..4)
                 .filter_map(|d| {
