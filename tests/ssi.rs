@@ -217,3 +217,102 @@ fn barely_overlapping_patches_keep_their_arcs() {
         }
     }
 }
+
+/// A tensor patch `examples/data/ssi/{name}.json` (rootclip patch JSON,
+/// polynomial).
+fn load(name: &str) -> Patch {
+    let path = format!("{}/examples/data/ssi/{name}.json", env!("CARGO_MANIFEST_DIR"));
+    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let deg = &v["degree"];
+    let pts = v["points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| DVec3::new(p[0].as_f64().unwrap(), p[1].as_f64().unwrap(), p[2].as_f64().unwrap()))
+        .collect();
+    let (m, n) = (deg[0].as_u64().unwrap() as usize, deg[1].as_u64().unwrap() as usize);
+    Patch::from(TensorPatch::new(m, n, pts, None).unwrap())
+}
+
+/// The bump `z = 4u(1 − u)v(1 − v)` on `[0, 1]²` (top `1/4` at the centre).
+fn bump() -> Patch {
+    let mut pts = Vec::new();
+    for i in 0..3 {
+        for j in 0..3 {
+            let z = if i == 1 && j == 1 { 1.0 } else { 0.0 };
+            pts.push(DVec3::new(0.5 * i as f64, 0.5 * j as f64, z));
+        }
+    }
+    Patch::from(TensorPatch::new(2, 2, pts, None).unwrap())
+}
+
+#[test]
+fn tiny_loops_close() {
+    // Regression: the hyperplane Newton of the tracer demanded a step below
+    // 1e-14, under the rounding floor where the curve's derivative across
+    // it is ~r; loops of radius ≲ 3e-4 stopped 45° from each turning point.
+    // `z = 1/4 − r²` cuts the bump in a loop of radius about r.
+    for r in [1e-3, 3e-4, 1e-4, 3e-5, 1e-5] {
+        let z = 0.25 - r * r;
+        let h = 0.5;
+        let p = |x: f64, y: f64| DVec3::new(0.5 + x * h, 0.5 + y * h, z);
+        let a = Patch::from(TensorPatch::new(1, 1, vec![p(-1.0, -1.0), p(-1.0, 1.0), p(1.0, -1.0), p(1.0, 1.0)], None).unwrap());
+        let b = bump();
+        let out = intersect_surfaces(&a, &b, &SsiOptions::default()).unwrap();
+        assert!(out.complete, "r = {r}: {:?}", out.singular);
+        assert_eq!(out.branches.len(), 1, "r = {r}");
+        let br = &out.branches[0];
+        assert!(br.closed && br.points.len() >= 4, "r = {r}");
+        on_both(&a, &b, &out);
+        for q in &br.points {
+            assert!(q.certified);
+            let d = ((q.b[0] - 0.5).powi(2) + (q.b[1] - 0.5).powi(2)).sqrt();
+            assert!((d / r - 1.0).abs() < 0.01, "r = {r}: a point at distance {d}");
+        }
+    }
+}
+
+#[test]
+fn tiny_loop_data_file_closes() {
+    let (a, b) = (load("tiny_loop_a"), load("tiny_loop_b"));
+    let out = intersect_surfaces(&a, &b, &SsiOptions::default()).unwrap();
+    assert!(out.complete, "{:?}", out.singular);
+    assert_eq!(out.branches.len(), 1);
+    assert!(out.branches[0].closed);
+    assert!(out.branches[0].points.iter().all(|p| p.certified));
+    on_both(&a, &b, &out);
+}
+
+#[test]
+fn an_arc_between_undecided_ends_is_traced_whole() {
+    // Regression: `(1 − u)²·4v(1 − v)` against the plane z = 1/2 whose edge
+    // lies on the edge u = 0 (two faces sharing an edge). The arc's ends,
+    // v = (1 ± √½)/2 on u = 0, lie where both patches' edges meet and stay
+    // undecided; the arc was traced from its turning point (u = 1 − √½,
+    // v = 1/2) one way only.
+    let (a, b) = (load("edge_twice_shared_a"), load("edge_twice_shared_b"));
+    let out = intersect_surfaces(&a, &b, &SsiOptions::default()).unwrap();
+    assert!(!out.complete);
+    assert_eq!(out.branches.len(), 1);
+    let br = &out.branches[0];
+    assert!(!br.closed);
+    on_both(&a, &b, &out);
+    let (v0, v1) = (0.5 - 0.5f64.sqrt() / 2.0, 0.5 + 0.5f64.sqrt() / 2.0);
+    let vs: Vec<f64> = br.points.iter().map(|p| p.a[1]).collect();
+    let (lo, hi) = vs.iter().fold((1.0f64, 0.0f64), |(l, h), &v| (l.min(v), h.max(v)));
+    assert!((lo - v0).abs() < 1e-6 && (hi - v1).abs() < 1e-6, "v spans {lo}..{hi}");
+    assert!(vs.windows(2).all(|w| w[0] < w[1]) || vs.windows(2).all(|w| w[0] > w[1]));
+    for p in &br.points {
+        assert!(p.certified);
+        let [u, v] = p.a;
+        assert!(((1.0 - u).powi(2) * 4.0 * v * (1.0 - v) - 0.5).abs() < 1e-9);
+    }
+    // Both undecided ends are stated.
+    for v in [v0, v1] {
+        assert!(
+            out.singular.iter().any(|s| s.kind == SingularKind::Unfinished && (s.a[1][0] - v).abs() < 1e-6),
+            "no unfinished end near v = {v}: {:?}",
+            out.singular
+        );
+    }
+}
