@@ -256,7 +256,9 @@ fn tiny_loops_close() {
         let z = 0.25 - r * r;
         let h = 0.5;
         let p = |x: f64, y: f64| DVec3::new(0.5 + x * h, 0.5 + y * h, z);
-        let a = Patch::from(TensorPatch::new(1, 1, vec![p(-1.0, -1.0), p(-1.0, 1.0), p(1.0, -1.0), p(1.0, 1.0)], None).unwrap());
+        let a = Patch::from(
+            TensorPatch::new(1, 1, vec![p(-1.0, -1.0), p(-1.0, 1.0), p(1.0, -1.0), p(1.0, 1.0)], None).unwrap(),
+        );
         let b = bump();
         let out = intersect_surfaces(&a, &b, &SsiOptions::default()).unwrap();
         assert!(out.complete, "r = {r}: {:?}", out.singular);
@@ -310,7 +312,9 @@ fn an_arc_between_undecided_ends_is_traced_whole() {
     // Both undecided ends are stated.
     for v in [v0, v1] {
         assert!(
-            out.singular.iter().any(|s| s.kind == SingularKind::Unfinished && (s.a[1][0] - v).abs() < 1e-6),
+            out.singular
+                .iter()
+                .any(|s| s.kind == SingularKind::Unfinished && (s.a[1][0] - v).abs() < 1e-6),
             "no unfinished end near v = {v}: {:?}",
             out.singular
         );
