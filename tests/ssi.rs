@@ -320,3 +320,20 @@ fn an_arc_between_undecided_ends_is_traced_whole() {
         );
     }
 }
+
+#[test]
+fn a_near_tangential_loop_closes() {
+    // z = 10⁻⁶ on the bowl z = x² + y²: a loop of radius 10⁻³ where the
+    // normals are 2·10⁻³ rad apart (`near_tangent_loop`). Before the
+    // hyperplane Newton stopped at its rounding floor it stopped twice.
+    let (a, b) = (paraboloid(1.0, 0.0), plane(1e-6, 1.0));
+    let out = intersect_surfaces(&a, &b, &SsiOptions::default()).unwrap();
+    assert!(out.complete, "{:?}", out.singular);
+    assert_eq!(out.branches.len(), 1);
+    assert!(out.branches[0].closed);
+    on_both(&a, &b, &out);
+    for p in &out.branches[0].points {
+        assert!(p.certified);
+        assert!((p.xyz[0].powi(2) + p.xyz[1].powi(2) - 1e-6).abs() < 1e-12);
+    }
+}
