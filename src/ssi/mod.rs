@@ -82,7 +82,8 @@ pub struct SsiOptions {
     pub tol: f64,
     /// Box budget of each start-point solve.
     pub max_boxes: usize,
-    /// Most points per branch.
+    /// Most points per branch traced one way (a branch traced both ways
+    /// from a turning point may hold twice as many).
     pub max_points: usize,
 }
 
