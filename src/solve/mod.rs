@@ -340,6 +340,7 @@ fn solve_exact_triangle(
     Ok(finish_exact(
         solve_pieces(vec![piece], &global, Domain::Triangle, opts),
         &sys,
+        opts.deadline,
     ))
 }
 
@@ -372,7 +373,7 @@ fn solve_exact_square(
         };
         let sol = rect::solve_rect(&ef.map(enclose), &eg.map(enclose), None, &ropts)?.solution;
         if sol.complete || opts.deadline.is_some_and(|d| std::time::Instant::now() >= d) {
-            return Ok(finish_exact(sol, &sys));
+            return Ok(finish_exact(sol, &sys, opts.deadline));
         }
         // Out of budget (e.g. two curves running nearly parallel
         // along a diagonal, which axis-aligned boxes separate only
@@ -383,14 +384,17 @@ fn solve_exact_square(
     Ok(finish_exact(
         square_pieces(&ef.map(enclose), &eg.map(enclose), exact, opts)?,
         &sys,
+        opts.deadline,
     ))
 }
 
 /// Undecided regions at most this wide are retried by exact Krawczyk.
 const EXACT_CERTIFY_BELOW: f64 = 1e-6;
-/// At most this many exact Krawczyk tests per solve (each region that does
-/// not settle at once is bisected, at most three times).
-const EXACT_CERTIFY_MAX: usize = 24;
+/// At most this many exact Krawczyk tests per region (one that does not
+/// settle at once is bisected, at most three times). The total grows with
+/// the number of regions, i.e. with the roots, and the solve's deadline
+/// ends it (regions not tried stay undecided).
+const EXACT_CERTIFY_MAX: usize = 15;
 
 /// Retries small undecided regions with Krawczyk in exact arithmetic
 /// ([`settle::ExactSystem::certify`]), bisecting a region that does not
@@ -402,10 +406,14 @@ const EXACT_CERTIFY_MAX: usize = 24;
 /// retried one by one; the regions left are then joined ([`join_undecided`]).
 /// Then every certified root on the boundary is settled
 /// ([`settle_boundary`]).
-fn finish_exact(mut sol: Solution, sys: &settle::ExactSystem) -> Solution {
+fn finish_exact(mut sol: Solution, sys: &settle::ExactSystem, deadline: Option<std::time::Instant>) -> Solution {
     let mut kept = Vec::with_capacity(sol.clusters.len());
-    let mut budget = EXACT_CERTIFY_MAX;
     for c in std::mem::take(&mut sol.clusters) {
+        if deadline.is_some_and(|d| std::time::Instant::now() >= d) {
+            kept.push(c);
+            continue;
+        }
+        let mut budget = EXACT_CERTIFY_MAX;
         let small = c.bx.u[1] - c.bx.u[0] <= EXACT_CERTIFY_BELOW && c.bx.v[1] - c.bx.v[0] <= EXACT_CERTIFY_BELOW;
         // A (nearly) singular Jacobian at the centre: a multiple root, or
         // roots closer than these tests separate; not worth the exact cost.

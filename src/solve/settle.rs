@@ -37,11 +37,13 @@
 
 use super::degenerate::gcd;
 use super::krawczyk::exact::{self, RationalSystem};
-use super::krawczyk::Verdict;
+use super::krawczyk::{Bivariate, Verdict};
 use super::solution::Box2;
 use crate::error::{Error, Result};
 use crate::poly::{tri_index, tri_len, Direction, TensorBezier, TriBezier};
 use crate::scalar::rational_interval::RI;
+use crate::scalar::rational_to_interval;
+use inari::{interval, Interval};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
@@ -135,6 +137,59 @@ pub struct ExactSystem {
     /// `∂f_k/∂u`, `∂f_k/∂v` of the scaled system (shapes one degree lower in
     /// that variable), formed on first use.
     df: std::sync::OnceLock<[[Poly; 2]; 2]>,
+    /// `∂²f_k/∂x_d∂x_e` (`[k][d][e]`) of the scaled system, formed on first
+    /// use: the slopes of the Jacobian's centred form.
+    d2f: std::sync::OnceLock<[[[Poly; 2]; 2]; 2]>,
+    /// The first and second derivatives enclosed in `f64` intervals
+    /// (coefficients rounded outward), formed on first use.
+    float: std::sync::OnceLock<FloatDerivs>,
+}
+
+/// `[[f_u, f_v], [g_u, g_v]]` and their partials (`d2[k][d][e]`), with
+/// interval coefficients that enclose the exact ones.
+#[derive(Clone, Debug)]
+struct FloatDerivs {
+    d1: [[FPoly; 2]; 2],
+    d2: [[[FPoly; 2]; 2]; 2],
+}
+
+/// A [`Poly`] with `f64` interval coefficients enclosing its own.
+#[derive(Clone, Debug)]
+enum FPoly {
+    Triangle(TriBezier<Interval>),
+    Tensor(Box<TensorBezier<Interval>>),
+}
+
+impl FPoly {
+    fn of(p: &Poly) -> Self {
+        match p {
+            Poly::Triangle(t) => FPoly::Triangle(t.map(rational_to_interval)),
+            Poly::Tensor(t) => FPoly::Tensor(Box::new(t.map(rational_to_interval))),
+        }
+    }
+
+    /// An enclosure of the range over `u × v` (inari, outward rounding).
+    fn over(&self, u: Interval, v: Interval) -> Interval {
+        match self {
+            FPoly::Triangle(t) => t.value(u, v),
+            FPoly::Tensor(t) => t.value(u, v),
+        }
+    }
+}
+
+/// The `f64` interval hull of a rational interval.
+fn hull(x: &RI) -> Interval {
+    let (lo, hi) = (rational_to_interval(&x.lo), rational_to_interval(&x.hi));
+    interval!(lo.inf(), hi.sup()).unwrap_or(Interval::ENTIRE)
+}
+
+/// A rational interval holding the `f64` interval `x` (its endpoints are
+/// dyadic and exact); `None` where `x` is unbounded or empty.
+fn exact_iv(x: Interval) -> Option<RI> {
+    if x.is_empty() {
+        return None;
+    }
+    Some(RI::new(Q::from_float(x.inf())?, Q::from_float(x.sup())?))
 }
 
 /// [`ExactSystem`]'s polynomials with integer coefficients.
@@ -231,6 +286,8 @@ impl ExactSystem {
             input: ([f, g], h),
             scaled: std::sync::OnceLock::new(),
             df: std::sync::OnceLock::new(),
+            d2f: std::sync::OnceLock::new(),
+            float: std::sync::OnceLock::new(),
         })
     }
 
@@ -246,6 +303,51 @@ impl ExactSystem {
     fn df(&self) -> &[[Poly; 2]; 2] {
         self.df
             .get_or_init(|| self.scaled().f.clone().map(|p| Poly::new(self.shape, p).derivs()))
+    }
+
+    /// The second derivatives `[k][d][e]` as exact polynomials.
+    fn d2f(&self) -> &[[[Poly; 2]; 2]; 2] {
+        self.d2f
+            .get_or_init(|| self.df().clone().map(|row| row.map(|p| p.derivs())))
+    }
+
+    /// The derivatives in `f64` intervals.
+    fn float(&self) -> &FloatDerivs {
+        self.float.get_or_init(|| FloatDerivs {
+            d1: self.df().clone().map(|row| row.map(|p| FPoly::of(&p))),
+            d2: self.d2f().clone().map(|row| row.map(|ps| ps.map(|p| FPoly::of(&p)))),
+        })
+    }
+
+    /// The Jacobian over `x` enclosed in `f64` interval arithmetic: the
+    /// direct enclosure met with the centred form (see [`Self::jacobian`]).
+    /// Only `F(x̃)` must be exact for Krawczyk's operator to contract to a
+    /// simple root; `F'(X)` needs to be tight relative to `|F'|`, which
+    /// `f64` gives unless the Jacobian itself is lost to rounding (then
+    /// [`ExactSystem::certify`] falls back to the exact enclosure).
+    fn jacobian_float(&self, x: &[RI; 2]) -> Option<[[RI; 2]; 2]> {
+        let fl = self.float();
+        let xf = [hull(&x[0]), hull(&x[1])];
+        let two = Q::from_integer(2.into());
+        let m = [0, 1].map(|e| hull(&RI::point((&x[e].lo + &x[e].hi) / &two)));
+        let dx = [xf[0] - m[0], xf[1] - m[1]];
+        let mut out: [[Option<RI>; 2]; 2] = Default::default();
+        for k in 0..2 {
+            for d in 0..2 {
+                let direct = fl.d1[k][d].over(xf[0], xf[1]);
+                let mut centred = fl.d1[k][d].over(m[0], m[1]);
+                for e in 0..2 {
+                    centred = centred + fl.d2[k][d][e].over(xf[0], xf[1]) * dx[e];
+                }
+                let j = direct.intersection(centred);
+                if !(j.inf().is_finite() && j.sup().is_finite()) {
+                    return None;
+                }
+                out[k][d] = exact_iv(j);
+            }
+        }
+        let [[a, b], [c, d]] = out;
+        Some([[a?, b?], [c?, d?]])
     }
 
     /// The Jacobian `[f_u, f_v, g_u, g_v]` at `(u, v)`, in `f64` (an
@@ -512,19 +614,81 @@ impl ExactSystem {
     /// empty. Used on the small undecided regions that rounding left: with
     /// exact coefficients the noise that defeated the interval Krawczyk test
     /// is gone (two roots 1e-8 apart, say).
+    ///
+    /// First with the Jacobian enclosed in `f64` intervals ([`Fast`]: `F` at
+    /// the centre is still exact), then, if that is undecided, with every
+    /// enclosure exact.
     pub fn certify(&self, bx: Box2) -> Verdict<Box2, ()> {
-        exact::certify(self, bx)
+        match exact::certify(&Fast(self), bx) {
+            Verdict::Undecided(()) => exact::certify(self, bx),
+            v => v,
+        }
+    }
+
+    /// `p(x)` exactly at the point `x` (integer coefficients `c`).
+    fn value_at(&self, c: &[Q], x: &[Q; 2]) -> Q {
+        let num = eval_at(self.shape, c, x);
+        let (b, d) = (x[0].denom(), x[1].denom());
+        let den = match self.shape {
+            Shape::Tensor(m, n) => num_traits::pow(b.clone(), m) * num_traits::pow(d.clone(), n),
+            Shape::Triangle(n) => num_traits::pow(b * d, n),
+        };
+        Q::new(num, den)
+    }
+}
+
+/// [`ExactSystem`] with its Jacobian enclosed in `f64` intervals
+/// ([`ExactSystem::jacobian_float`]; exactly where that is unbounded).
+struct Fast<'a>(&'a ExactSystem);
+
+impl RationalSystem for Fast<'_> {
+    fn value(&self, x: &[RI; 2]) -> [RI; 2] {
+        self.0.value(x)
+    }
+
+    fn jacobian(&self, x: &[RI; 2]) -> [[RI; 2]; 2] {
+        self.0.jacobian_float(x).unwrap_or_else(|| self.0.jacobian(x))
     }
 }
 
 impl RationalSystem for ExactSystem {
+    /// Exact at a point (by integer de Casteljau), an enclosure otherwise.
     fn value(&self, x: &[RI; 2]) -> [RI; 2] {
         let f = &self.scaled().f;
+        if x.iter().all(|c| c.lo == c.hi) {
+            let p = [x[0].lo.clone(), x[1].lo.clone()];
+            return [0, 1].map(|k| RI::point(self.value_at(&f[k], &p)));
+        }
         [0, 1].map(|k| eval(self.shape, &f[k], x))
     }
 
+    /// Each entry `j = ∂f_k/∂x_d` enclosed twice, kept where both agree:
+    /// by de Casteljau over `X`, and by the centred (mean-value) form
+    /// `j(m) + Σ_e ∂j/∂x_e(X)·(X_e − m)` about the box's centre `m`. Near a
+    /// root where the coefficients cancel heavily (`|∇f|` far below their
+    /// size: roots of a product of many lines, a few hundredths apart) the
+    /// direct enclosure is about `n·max|c|·w` wide, which swamps `|∇f|`
+    /// unless `w` is tiny; the centred form's excess is of order `w²`.
     fn jacobian(&self, x: &[RI; 2]) -> [[RI; 2]; 2] {
-        [0, 1].map(|k| [0, 1].map(|d| self.df()[k][d].enclose(x)))
+        let is_point = x.iter().all(|c| c.lo == c.hi);
+        if is_point {
+            return [0, 1].map(|k| [0, 1].map(|d| self.df()[k][d].enclose(x)));
+        }
+        let two = Q::from_integer(2.into());
+        let m = [0, 1].map(|e| (&x[e].lo + &x[e].hi) / &two);
+        let pm = [RI::point(m[0].clone()), RI::point(m[1].clone())];
+        let dx = [x[0].sub_point(&m[0]), x[1].sub_point(&m[1])];
+        [0, 1].map(|k| {
+            [0, 1].map(|d| {
+                let direct = self.df()[k][d].enclose(x);
+                let mut centred = self.df()[k][d].enclose(&pm);
+                for (e, dxe) in dx.iter().enumerate() {
+                    centred = centred.add(&self.d2f()[k][d][e].enclose(x).mul(dxe));
+                }
+                // Both contain every value over X, so they meet.
+                direct.meet(&centred).unwrap_or(direct)
+            })
+        })
     }
 }
 

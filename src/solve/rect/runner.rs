@@ -498,10 +498,14 @@ impl Runner {
                     // root stays inside, away from the new edges), where J
                     // is tighter — if that at least halves the box; a wide K
                     // (J still loose) is left to the clips below instead.
-                    let spans = k.map(|c| {
+                    let mut spans = k.map(|c| {
                         let r = 0.5 * (c.hi - c.lo);
                         ((c.lo - r).max(0.0), (c.hi + r).min(1.0))
                     });
+                    // Not thinner than `MIN_ASPECT` of the other side: a
+                    // needle box (one equation clips its variable to rounding
+                    // while the other lags) ruins the next Krawczyk steps.
+                    keep_aspect(&mut spans, w);
                     if spans.iter().map(|s| s.1 - s.0).product::<f64>() <= 0.5 {
                         for (d, &(a, b)) in spans.iter().enumerate() {
                             clip(&mut node, sh, d, a, b);
@@ -562,7 +566,8 @@ impl Runner {
                 self.stats.clip_exclusions += 1;
                 return Step::Done;
             }
-            Some(spans) => {
+            Some(mut spans) => {
+                keep_aspect(&mut spans, self.rel_width(&node));
                 if area * self.clip_to(&mut node, &spans) <= 0.5 {
                     return Step::Continue(node);
                 }
