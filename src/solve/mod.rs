@@ -371,7 +371,13 @@ fn solve_exact_square(
             deadline: opts.deadline,
             ..rect::RectOptions::default()
         };
-        let sol = rect::solve_rect(&ef.map(enclose), &eg.map(enclose), None, &ropts)?.solution;
+        let sol = rect::solve_rect_exact(
+            &ef.map(enclose),
+            &eg.map(enclose),
+            std::sync::Arc::new(sys.clone()),
+            &ropts,
+        )?
+        .solution;
         if sol.complete || opts.deadline.is_some_and(|d| std::time::Instant::now() >= d) {
             return Ok(finish_exact(sol, &sys, opts.deadline));
         }

@@ -67,6 +67,10 @@ pub(super) struct Node {
     /// this box ([`Query::Nearest`](super::Query::Nearest) orders children
     /// by it and then prunes with it, so it is computed once), or `None`.
     pub(super) key: Option<f64>,
+    /// The box's larger relative width when exact Krawczyk last failed on it
+    /// or an ancestor (`∞` if never tried): tried again only on boxes a
+    /// quarter as wide.
+    pub(super) exact_w: f64,
 }
 
 impl Node {
