@@ -140,6 +140,48 @@ fn ray_json_and_errors() {
     assert!(err.contains("line 2"), "{err}");
 }
 
+/// A reader that closes the pipe early (`rootclip ray … | head`) ends the
+/// output quietly: exit 0, nothing on stderr (the output, streamed, is far
+/// larger than the pipe's buffer, so the writes do meet the closed pipe).
+#[test]
+fn ray_output_into_a_closed_pipe() {
+    use std::io::Read;
+    let dir = TempDir::new("ray_pipe");
+    let patch = dir.file("patch.json", FLAT);
+    let line = "0.25 0.5 1 0 0 -1\n";
+    let rays = dir.file("rays.txt", &line.repeat(5000));
+    for json in [false, true] {
+        let mut args = vec!["ray", "--patch", &patch, "--rays", &rays];
+        if json {
+            args.push("--json");
+        }
+        let mut child = Command::new(env!("CARGO_BIN_EXE_rootclip"))
+            .args(&args)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("the binary runs");
+        let mut head = [0u8; 100];
+        child
+            .stdout
+            .take()
+            .expect("stdout")
+            .read_exact(&mut head)
+            .expect("some output");
+        // The pipe's read end is dropped here: the rest of the output meets a closed pipe.
+        let out = child.wait_with_output().expect("the binary ends");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{args:?}: {:?} {stderr}", out.status);
+        assert!(stderr.is_empty(), "{args:?}: {stderr}");
+        let expected: &[u8] = if json {
+            b"{\"schema_version\":1,\"rays\":["
+        } else {
+            b"ray 0: 1 hit(s)"
+        };
+        assert!(head.starts_with(expected), "{}", String::from_utf8_lossy(&head));
+    }
+}
+
 #[test]
 fn ray_reads_standard_input() {
     let dir = TempDir::new("ray_stdin");

@@ -10,7 +10,7 @@
 //! "missed", "true_hits"}}`, rays in input order, claims in file order.
 
 use super::input::read_input;
-use super::json::document;
+use super::output::Answer;
 use super::ray::{parse_patch, parse_rays};
 use crate::error::{Error, Result};
 use crate::ray::{classify_with, Claim, Classification, RayOptions};
@@ -78,7 +78,7 @@ struct Report {
     summary: Summary,
 }
 
-pub(super) fn run(args: &CrosscheckArgs) -> Result<String> {
+pub(super) fn run(args: &CrosscheckArgs) -> Result<Answer> {
     let stdin_users = [&args.patch, &args.rays, &args.claims]
         .iter()
         .filter(|p| p.as_str() == "-")
@@ -154,7 +154,11 @@ pub(super) fn run(args: &CrosscheckArgs) -> Result<String> {
         rays: rays_json,
         summary,
     };
-    Ok(if args.json { document(&report) } else { text(&report) })
+    Ok(if args.json {
+        Answer::json(report)
+    } else {
+        Answer::text(text(&report))
+    })
 }
 
 fn text(r: &Report) -> String {

@@ -3,7 +3,8 @@
 
 use crate::ray::{Hit, RayOutcome};
 use crate::solve::{Cluster, Solution, UndecidedReason};
-use serde::Serialize;
+use serde::{Serialize, Serializer};
+use std::io::{self, Write};
 
 /// Bumped whenever a key changes meaning or disappears (adding keys does not
 /// bump it).
@@ -16,13 +17,39 @@ struct Envelope<'a, T: Serialize> {
     body: &'a T,
 }
 
-/// `body` as one line of JSON with `"schema_version"` first.
+/// `body` as one line of JSON with `"schema_version"` first (the small
+/// documents: `bernstein`, `tables`, `heuristics`, `ssi`).
 pub(super) fn document<T: Serialize>(body: &T) -> String {
     let env = Envelope {
         schema_version: SCHEMA_VERSION,
         body,
     };
     serde_json::to_string(&env).unwrap_or_else(|e| format!("{{\"schema_version\":{SCHEMA_VERSION},\"error\":\"{e}\"}}"))
+}
+
+/// The same line as [`document`] and a newline, serialized straight into
+/// `out`. A serialization error (none of the CLI's types can produce one)
+/// comes back as an `InvalidData` I/O error, after part of the line.
+pub(super) fn write_document<T: Serialize>(out: &mut impl Write, body: &T) -> io::Result<()> {
+    let env = Envelope {
+        schema_version: SCHEMA_VERSION,
+        body,
+    };
+    serde_json::to_writer(&mut *out, &env)?;
+    out.write_all(b"\n")
+}
+
+/// A JSON array of `view(item)` for the items, each element made just
+/// before it is written: no `Vec` of the views is built.
+pub(super) struct LazySeq<'a, T, U> {
+    pub(super) items: &'a [T],
+    pub(super) view: &'a dyn Fn(&'a T) -> U,
+}
+
+impl<T, U: Serialize> Serialize for LazySeq<'_, T, U> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_seq(self.items.iter().map(self.view))
+    }
 }
 
 /// An undecided region with its reason's English text.

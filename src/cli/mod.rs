@@ -6,6 +6,7 @@ mod crosscheck;
 mod heuristics;
 mod input;
 mod json;
+mod output;
 mod project;
 mod ray;
 mod solve;
@@ -13,7 +14,7 @@ mod ssi;
 mod tables;
 
 use clap::{Parser, Subcommand};
-use std::io::Write;
+use output::Answer;
 use std::process::ExitCode;
 
 #[derive(Parser)]
@@ -49,7 +50,7 @@ enum Command {
 
 /// Runs the command line: parses the arguments, runs the command, prints its
 /// output (or one error line) and returns the exit code (0, or 2 for bad
-/// input).
+/// input or an unwritable standard output).
 pub fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -77,21 +78,22 @@ pub fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let out = match cli.command {
-        Command::Bernstein(args) => bernstein::run(&args),
-        Command::Tables(args) => tables::run(&args),
+    let answer = match cli.command {
+        Command::Bernstein(args) => bernstein::run(&args).map(Answer::text),
+        Command::Tables(args) => tables::run(&args).map(Answer::text),
         Command::Ray(args) => ray::run(&args),
         Command::Crosscheck(args) => crosscheck::run(&args),
         Command::Project(args) => project::run(&args),
-        Command::Heuristics(args) => heuristics::run(&args),
+        Command::Heuristics(args) => heuristics::run(&args).map(Answer::text),
         Command::Solve(args) => solve::run(&args),
-        Command::Ssi(args) => ssi::run(&args),
+        Command::Ssi(args) => ssi::run(&args).map(Answer::text),
     };
-    match out {
-        Ok(out) => {
-            // A closed pipe (`rootclip ... | head`) is not an error worth a panic.
-            let _ = writeln!(std::io::stdout(), "{out}");
-            ExitCode::SUCCESS
+    match answer.map(Answer::print) {
+        // A closed pipe (`rootclip ... | head`) counts as written.
+        Ok(Ok(())) => ExitCode::SUCCESS,
+        Ok(Err(e)) => {
+            eprintln!("rootclip: writing standard output: {e}");
+            ExitCode::from(2)
         }
         Err(e) => {
             // One line, whatever the message holds.

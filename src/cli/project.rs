@@ -7,13 +7,15 @@
 //! "v"}}]}`, in input order.
 
 use super::input::read_input;
-use super::json::document;
+use super::json::{write_document, LazySeq};
+use super::output::Answer;
 use super::ray::parse_patch;
 use crate::error::{Error, Result};
 use crate::project::{project_batch, Foot, ProjectOptions, Projection, ProjectionStatus};
 use crate::solve::Box2;
 use glam::DVec3;
 use serde::Serialize;
+use std::io::{self, Write};
 
 /// Arguments of `rootclip project`.
 #[derive(Clone, Debug, clap::Args)]
@@ -53,11 +55,6 @@ struct PointJson {
     bx: Option<Box2>,
 }
 
-#[derive(Serialize)]
-struct Report {
-    points: Vec<PointJson>,
-}
-
 fn tie(f: &Foot) -> TieJson {
     TieJson {
         u: f.u,
@@ -82,7 +79,7 @@ fn point_json(p: &Projection) -> PointJson {
     }
 }
 
-pub(super) fn run(args: &ProjectArgs) -> Result<String> {
+pub(super) fn run(args: &ProjectArgs) -> Result<Answer> {
     if args.patch == "-" && args.points == "-" {
         return Err(Error::InvalidOption(
             "--patch and --points cannot both read standard input".into(),
@@ -94,35 +91,46 @@ pub(super) fn run(args: &ProjectArgs) -> Result<String> {
         .into_iter()
         .collect::<Result<Vec<_>>>()?;
     Ok(if args.json {
-        document(&Report {
-            points: results.iter().map(point_json).collect(),
+        Answer::new(move |out| {
+            #[derive(Serialize)]
+            struct Report<'a> {
+                points: LazySeq<'a, Projection, PointJson>,
+            }
+            let points = LazySeq {
+                items: &results,
+                view: &point_json,
+            };
+            write_document(out, &Report { points })
         })
     } else {
-        results
-            .iter()
-            .enumerate()
-            .map(|(k, p)| {
-                format!(
-                    "point {k}: u = {:.17} v = {:.17} distance [{:e}, {:e}] {}{}",
-                    p.u,
-                    p.v,
-                    p.distance[0],
-                    p.distance[1],
-                    match p.status {
-                        ProjectionStatus::Unique => "certified",
-                        ProjectionStatus::Ties => "certified, tied feet",
-                        _ => "UNDECIDED",
-                    },
-                    if p.feet.len() > 1 {
-                        format!(" ({} feet)", p.feet.len())
-                    } else {
-                        String::new()
-                    }
-                )
-            })
-            .collect::<Vec<_>>()
-            .join("\n")
+        Answer::new(move |out| write_text(out, &results))
     })
+}
+
+/// `point k: …` for each point, joined by newlines, and a final newline.
+fn write_text(out: &mut impl Write, results: &[Projection]) -> io::Result<()> {
+    for (k, p) in results.iter().enumerate() {
+        if k > 0 {
+            out.write_all(b"\n")?;
+        }
+        write!(
+            out,
+            "point {k}: u = {:.17} v = {:.17} distance [{:e}, {:e}] {}",
+            p.u,
+            p.v,
+            p.distance[0],
+            p.distance[1],
+            match p.status {
+                ProjectionStatus::Unique => "certified",
+                ProjectionStatus::Ties => "certified, tied feet",
+                _ => "UNDECIDED",
+            }
+        )?;
+        if p.feet.len() > 1 {
+            write!(out, " ({} feet)", p.feet.len())?;
+        }
+    }
+    out.write_all(b"\n")
 }
 
 /// Parses PTS.txt: `x y z` per line.

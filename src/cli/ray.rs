@@ -8,13 +8,15 @@
 //! `"degenerate"` reason with its `"degenerate_code"`.
 
 use super::input::read_input;
-use super::json::{document, RayJson};
+use super::json::{write_document, LazySeq, RayJson};
+use super::output::Answer;
 use crate::error::{Error, Result};
 use crate::ray::{intersect, Hit, Patch, PatchSpec, Query, Ray, RayOptions, RayOutcome};
 use crate::solve::SquareRoute;
 use glam::DVec3;
 use rayon::prelude::*;
 use serde::Serialize;
+use std::io::{self, Write};
 
 /// Arguments of `rootclip ray`.
 #[derive(Clone, Debug, clap::Args)]
@@ -53,8 +55,9 @@ pub(super) struct RayArgs {
 }
 
 /// Runs the command and returns its output. Batches run in parallel (rayon),
-/// with a progress bar on a terminal; the output is in input order.
-pub(super) fn run(args: &RayArgs) -> Result<String> {
+/// with a progress bar on a terminal; the output is in input order, written
+/// ray by ray (text or JSON) once every ray is solved.
+pub(super) fn run(args: &RayArgs) -> Result<Answer> {
     if args.patch == "-" && args.rays.as_deref() == Some("-") {
         return Err(Error::InvalidOption(
             "--patch and --rays cannot both read standard input".into(),
@@ -97,26 +100,28 @@ pub(super) fn run(args: &RayArgs) -> Result<String> {
     bar.finish_and_clear();
     let nearest = args.nearest;
     Ok(if args.json {
-        #[derive(Serialize)]
-        struct Rays<'a> {
-            rays: Vec<RayJson<'a>>,
-        }
-        let rays = outcomes
-            .iter()
-            .map(|o| {
-                let (complete, hits) = selected(o, nearest);
-                RayJson::new(o, complete, hits)
-            })
-            .collect();
-        document(&Rays { rays })
+        Answer::new(move |out| write_json(out, &outcomes, nearest))
     } else {
-        outcomes
-            .iter()
-            .enumerate()
-            .map(|(k, o)| outcome_text(k, o, nearest))
-            .collect::<Vec<_>>()
-            .join("\n")
+        Answer::new(move |out| write_text(out, &outcomes, nearest))
     })
+}
+
+/// `{"schema_version": 1, "rays": [...]}`, each ray's JSON made as it is
+/// written.
+fn write_json(out: &mut impl Write, outcomes: &[RayOutcome], nearest: bool) -> io::Result<()> {
+    #[derive(Serialize)]
+    struct Rays<'a> {
+        rays: LazySeq<'a, RayOutcome, RayJson<'a>>,
+    }
+    let view = |o| {
+        let (complete, hits) = selected(o, nearest);
+        RayJson::new(o, complete, hits)
+    };
+    let rays = LazySeq {
+        items: outcomes,
+        view: &view,
+    };
+    write_document(out, &Rays { rays })
 }
 
 /// Parses PATCH.json (a [`PatchSpec`]) and validates the patch.
@@ -177,25 +182,38 @@ fn selected(o: &RayOutcome, nearest: bool) -> (bool, Vec<&Hit>) {
     }
 }
 
-fn outcome_text(k: usize, o: &RayOutcome, nearest: bool) -> String {
+/// `ray k: …` and a line per hit for each ray, the rays' texts joined by
+/// newlines, and a final newline.
+fn write_text(out: &mut impl Write, outcomes: &[RayOutcome], nearest: bool) -> io::Result<()> {
+    for (k, o) in outcomes.iter().enumerate() {
+        if k > 0 {
+            out.write_all(b"\n")?;
+        }
+        write_outcome(out, k, o, nearest)?;
+    }
+    out.write_all(b"\n")
+}
+
+fn write_outcome(out: &mut impl Write, k: usize, o: &RayOutcome, nearest: bool) -> io::Result<()> {
     let (complete, hits) = selected(o, nearest);
-    let mut out = format!(
+    write!(
+        out,
         "ray {k}: {} hit(s){}",
         hits.len(),
         if complete { ", complete" } else { "" }
-    );
+    )?;
     if let Some(reason) = o.degenerate_reason() {
-        out += &format!(", DEGENERATE: {reason}");
+        write!(out, ", DEGENERATE: {reason}")?;
     }
     for h in hits {
-        let status = match h.undecided_reason() {
-            None => String::new(),
-            Some(r) => format!("  (undecided: {})", r.describe()),
-        };
-        out += &format!(
-            "\n  t = {:.17} u = {:.17} v = {:.17} point [{:e}, {:e}, {:e}] normal [{:.6}, {:.6}, {:.6}]  t box [{:e}, {:e}]{status}",
+        write!(
+            out,
+            "\n  t = {:.17} u = {:.17} v = {:.17} point [{:e}, {:e}, {:e}] normal [{:.6}, {:.6}, {:.6}]  t box [{:e}, {:e}]",
             h.t, h.u, h.v, h.point.x, h.point.y, h.point.z, h.normal.x, h.normal.y, h.normal.z, h.bx.t[0], h.bx.t[1]
-        );
+        )?;
+        if let Some(r) = h.undecided_reason() {
+            write!(out, "  (undecided: {})", r.describe())?;
+        }
     }
-    out
+    Ok(())
 }

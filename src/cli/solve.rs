@@ -3,7 +3,8 @@
 
 use super::bernstein::{parse_bb, Bb};
 use super::input::read_input;
-use super::json::{document, SolutionJson};
+use super::json::{write_document, SolutionJson};
+use super::output::Answer;
 use crate::error::{Error, Result};
 use crate::poly::parse_polynomial;
 use crate::solve::{solve, solve_bb, Domain, Method, Solution, SolveOptions, SquareRoute};
@@ -59,7 +60,7 @@ pub(super) struct SolveArgs {
     json: bool,
 }
 
-pub(super) fn run(args: &SolveArgs) -> Result<String> {
+pub(super) fn run(args: &SolveArgs) -> Result<Answer> {
     let opts = SolveOptions::default()
         .with_method(args.method)
         .with_eps(args.eps)
@@ -100,9 +101,9 @@ pub(super) fn run(args: &SolveArgs) -> Result<String> {
     };
     let secs = t0.elapsed().as_secs_f64();
     Ok(if args.json {
-        document(&SolutionJson::new(&sol, secs))
+        Answer::new(move |out| write_document(out, &SolutionJson::new(&sol, secs)))
     } else {
-        solution_text(&sol, secs)
+        Answer::text(solution_text(&sol, secs))
     })
 }
 
