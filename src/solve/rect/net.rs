@@ -5,6 +5,7 @@
 use crate::scalar::interval;
 use crate::scalar::iv::Iv;
 use crate::solve::krawczyk::IBox;
+use smallvec::{smallvec, SmallVec};
 
 /// Scratch arrays on the stack hold this many coefficients per line; higher
 /// degrees skip the hull clip and the local Krawczyk test (they still split,
@@ -109,11 +110,8 @@ pub(super) fn jacobian_row(p: &[Iv], sh: Shape) -> [Iv; 2] {
 /// bidegree `(m, n)` over the local box `s × t` (any floats, extrapolation
 /// included), by de Casteljau with [`Iv::lerp_range`].
 pub(crate) fn eval_box(p: &[Iv], m: usize, n: usize, s: [f64; 2], t: [f64; 2]) -> Iv {
-    if m >= STACK || n >= STACK {
-        return Iv::new(f64::NEG_INFINITY, f64::INFINITY);
-    }
-    let mut col = [Iv::point(0.0); STACK];
-    let mut row = [Iv::point(0.0); STACK];
+    let mut col: SmallVec<[Iv; STACK]> = smallvec![Iv::point(0.0); m + 1];
+    let mut row: SmallVec<[Iv; STACK]> = smallvec![Iv::point(0.0); n + 1];
     for (i, line) in p.chunks(n + 1).enumerate() {
         row[..=n].copy_from_slice(line);
         for k in 1..=n {

@@ -8,11 +8,12 @@ use crate::scalar::iv::Iv;
 use crate::solve::krawczyk::local::{self, LocalSystem};
 use crate::solve::krawczyk::Verdict;
 use crate::solve::linalg::smallest_singular_left;
+use smallvec::{smallvec, SmallVec};
 
 /// The polynomial's value at the local point `(s, t)` (floats in `[0, 1]`).
 fn eval_local(p: &[Iv], sh: Shape, s: f64, t: f64) -> Iv {
-    let mut col = [Iv::point(0.0); STACK];
-    let mut row = [Iv::point(0.0); STACK];
+    let mut col: SmallVec<[Iv; STACK]> = smallvec![Iv::point(0.0); sh.m + 1];
+    let mut row: SmallVec<[Iv; STACK]> = smallvec![Iv::point(0.0); sh.n + 1];
     for i in 0..=sh.m {
         row[..=sh.n].copy_from_slice(&p[at(sh, i, 0)..=at(sh, i, sh.n)]);
         for r in 1..=sh.n {
@@ -33,8 +34,8 @@ fn eval_local(p: &[Iv], sh: Shape, s: f64, t: f64) -> Iv {
 /// The value at the local point `(s, t)` of the polynomial with the
 /// midpoints of `p` as coefficients, in `f64` (a proposal, never a proof).
 fn eval_mid(p: &[Iv], sh: Shape, s: f64, t: f64) -> f64 {
-    let mut col = [0.0f64; STACK];
-    let mut row = [0.0f64; STACK];
+    let mut col: SmallVec<[f64; STACK]> = smallvec![0.0; sh.m + 1];
+    let mut row: SmallVec<[f64; STACK]> = smallvec![0.0; sh.n + 1];
     for i in 0..=sh.m {
         for (r, c) in row.iter_mut().zip(&p[at(sh, i, 0)..=at(sh, i, sh.n)]) {
             *r = c.mid();
@@ -57,16 +58,13 @@ fn eval_mid(p: &[Iv], sh: Shape, s: f64, t: f64) -> f64 {
 /// Krawczyk on `X = [0, 1]²` in the box's local coordinates (`rect` docs,
 /// step 3), then contraction ([`local::certify_unit_box`]).
 pub(super) fn local_krawczyk(c: &[Iv], sh: Shape) -> Verdict<[Iv; 2], ()> {
-    if sh.m >= STACK || sh.n >= STACK {
-        return Verdict::Undecided(());
-    }
     let (f, g) = (&c[..sh.len], &c[sh.len..2 * sh.len]);
     let [a, b] = jacobian_row(f, sh);
     let [cc, d] = jacobian_row(g, sh);
     local::certify_unit_box(&BoxSystem { f, g, sh }, [a, b, cc, d])
 }
 
-/// The system on a box, as [`local`] evaluates it (degrees below [`STACK`]).
+/// The system on a box, as [`local`] evaluates it.
 struct BoxSystem<'a> {
     f: &'a [Iv],
     g: &'a [Iv],

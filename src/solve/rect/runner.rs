@@ -529,13 +529,6 @@ impl Runner {
         if w[0].max(w[1]) <= KRAWCZYK_BELOW {
             self.stats.krawczyk_calls += 1;
             let kv = local_krawczyk(&node.c, sh);
-            if std::env::var("RC_DEBUG2").is_ok() {
-                let o = node.outer();
-                let (r, q) = (9.0 / 22.0, 7.0 / 22.0);
-                if o[0][0] <= r && r <= o[0][1] && o[1][0] <= q && q <= o[1][1] {
-                    eprintln!("K w {:?} {:?} -> {:?}", w, o, kv);
-                }
-            }
             match kv {
                 Verdict::Unique(k) => {
                     // The box holds exactly one root, in K ⊂ int box. Go on
@@ -835,21 +828,6 @@ impl Runner {
 
     /// A box below `eps` that local Krawczyk did not settle.
     fn leaf(&mut self, node: &Node) {
-        if std::env::var("RC_DEBUG").is_ok() {
-            let sh = self.shape;
-            let st = |c: &[Iv]| {
-                let r = c.iter().map(|x| x.hi - x.lo).fold(0.0, f64::max);
-                let m = c.iter().map(|x| x.lo.abs().max(x.hi.abs())).fold(0.0, f64::max);
-                (r, m)
-            };
-            eprintln!(
-                "leaf w {:?} bx {:?} f {:?} g {:?}",
-                self.rel_width(node),
-                node.outer(),
-                st(&node.c[..sh.len]),
-                st(&node.c[sh.len..2 * sh.len])
-            );
-        }
         self.stats.leaves += 1;
         self.stats.krawczyk_calls += 1;
         let x = node.ibox();

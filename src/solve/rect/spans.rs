@@ -7,6 +7,7 @@ use super::net::{at, jacobian_row, one_signed, Node, Shape, STACK};
 use crate::scalar::iv::Iv;
 use crate::solve::envelope;
 use crate::solve::linalg::{inverse2, smallest_singular_left};
+use smallvec::{smallvec, SmallVec};
 
 /// The smallest ratio of a clipped box's sides ([`keep_aspect`]).
 const MIN_ASPECT: f64 = 1e-3;
@@ -35,11 +36,9 @@ pub(super) fn hull_spans(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
 /// docs, step 4); `None` if it provably does not.
 fn zero_span(p: &[Iv], sh: Shape, d: usize) -> Option<(f64, f64)> {
     let (k, other) = if d == 0 { (sh.m, sh.n) } else { (sh.n, sh.m) };
-    let mut lo = [0.0f64; STACK];
-    let mut hi = [0.0f64; STACK];
-    if k >= STACK {
-        return Some((0.0, 1.0));
-    }
+    // On the stack up to degree STACK − 1, on the heap above.
+    let mut lo: SmallVec<[f64; STACK]> = smallvec![0.0; k + 1];
+    let mut hi: SmallVec<[f64; STACK]> = smallvec![0.0; k + 1];
     for a in 0..=k {
         let (mut l, mut h) = (f64::INFINITY, f64::NEG_INFINITY);
         for b in 0..=other {

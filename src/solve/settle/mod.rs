@@ -35,6 +35,8 @@
 //! Used by [`super::solve`] for exact input, and by the ray front end, whose
 //! reduction it repeats in rationals with exact plane normals.
 
+mod power;
+
 use super::degenerate::gcd;
 use super::krawczyk::exact::{self, RationalSystem};
 use super::krawczyk::{Bivariate, Verdict};
@@ -143,6 +145,9 @@ pub struct ExactSystem {
     /// The first and second derivatives enclosed in `f64` intervals
     /// (coefficients rounded outward), formed on first use.
     float: std::sync::OnceLock<FloatDerivs>,
+    /// `f` and `g` of the scaled system in power form, formed on first use
+    /// (exact values at points; `None` if the conversion failed).
+    power: std::sync::OnceLock<Option<[power::PowerForm; 2]>>,
 }
 
 /// `[[f_u, f_v], [g_u, g_v]]` and their partials (`d2[k][d][e]`), with
@@ -288,6 +293,7 @@ impl ExactSystem {
             df: std::sync::OnceLock::new(),
             d2f: std::sync::OnceLock::new(),
             float: std::sync::OnceLock::new(),
+            power: std::sync::OnceLock::new(),
         })
     }
 
@@ -619,15 +625,29 @@ impl ExactSystem {
     /// the centre is still exact), then, if that is undecided, with every
     /// enclosure exact.
     pub fn certify(&self, bx: Box2) -> Verdict<Box2, ()> {
-        match exact::certify(&Fast(self), bx) {
-            Verdict::Undecided(()) => exact::certify(self, bx),
+        let fast = Fast {
+            sys: self,
+            lossy: std::cell::Cell::new(false),
+        };
+        match exact::certify(&fast, bx) {
+            Verdict::Undecided(()) if fast.lossy.get() => exact::certify(self, bx),
             v => v,
         }
     }
 
     /// `p(x)` exactly at the point `x` (integer coefficients `c`).
-    fn value_at(&self, c: &[Q], x: &[Q; 2]) -> Q {
-        let num = eval_at(self.shape, c, x);
+    fn value_at(&self, k: usize, x: &[Q; 2]) -> Q {
+        let power = self.power.get_or_init(|| {
+            let f = &self.scaled().f;
+            Some([
+                power::PowerForm::new(self.shape, &f[0])?,
+                power::PowerForm::new(self.shape, &f[1])?,
+            ])
+        });
+        let num = match power {
+            Some(p) => p[k].eval_at(x),
+            None => eval_at(self.shape, &self.scaled().f[k], x),
+        };
         let (b, d) = (x[0].denom(), x[1].denom());
         let den = match self.shape {
             Shape::Tensor(m, n) => num_traits::pow(b.clone(), m) * num_traits::pow(d.clone(), n),
@@ -639,16 +659,45 @@ impl ExactSystem {
 
 /// [`ExactSystem`] with its Jacobian enclosed in `f64` intervals
 /// ([`ExactSystem::jacobian_float`]; exactly where that is unbounded).
-struct Fast<'a>(&'a ExactSystem);
+struct Fast<'a> {
+    sys: &'a ExactSystem,
+    /// Set when rounding visibly limited the Jacobian: its enclosure at the
+    /// centre is not tight (or not finite), so an exact retry may succeed
+    /// where this one failed.
+    lossy: std::cell::Cell<bool>,
+}
 
 impl RationalSystem for Fast<'_> {
     fn value(&self, x: &[RI; 2]) -> [RI; 2] {
-        self.0.value(x)
+        self.sys.value(x)
     }
 
     fn jacobian(&self, x: &[RI; 2]) -> [[RI; 2]; 2] {
-        self.0.jacobian_float(x).unwrap_or_else(|| self.0.jacobian(x))
+        match self.sys.jacobian_float(x) {
+            Some(j) => {
+                if x.iter().all(|c| c.lo == c.hi) && !tight(&j) {
+                    self.lossy.set(true);
+                }
+                j
+            }
+            None => {
+                self.lossy.set(true);
+                self.sys.jacobian(x)
+            }
+        }
     }
+}
+
+/// Every entry's width is below a thousandth of its row's largest magnitude
+/// (then rounding costs Krawczyk's contraction little, and the exact retry
+/// would not do better).
+fn tight(j: &[[RI; 2]; 2]) -> bool {
+    j.iter().all(|row| {
+        let mag = |r: &RI| r.lo.abs().max(r.hi.abs());
+        let scale = mag(&row[0]).max(mag(&row[1]));
+        let limit = &scale / Q::from_integer(1000.into());
+        row.iter().all(|r| r.width() <= limit)
+    })
 }
 
 impl RationalSystem for ExactSystem {
@@ -657,7 +706,7 @@ impl RationalSystem for ExactSystem {
         let f = &self.scaled().f;
         if x.iter().all(|c| c.lo == c.hi) {
             let p = [x[0].lo.clone(), x[1].lo.clone()];
-            return [0, 1].map(|k| RI::point(self.value_at(&f[k], &p)));
+            return [0, 1].map(|k| RI::point(self.value_at(k, &p)));
         }
         [0, 1].map(|k| eval(self.shape, &f[k], x))
     }
