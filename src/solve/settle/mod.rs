@@ -42,6 +42,7 @@ use super::krawczyk::exact::{self, RationalSystem};
 use super::krawczyk::{Bivariate, Verdict};
 use super::solution::Box2;
 use crate::error::{Error, Result};
+use crate::poly::split_coeffs;
 use crate::poly::{tri_index, tri_len, Direction, TensorBezier, TriBezier};
 use crate::scalar::rational_interval::RI;
 use crate::scalar::rational_to_interval;
@@ -150,12 +151,11 @@ pub struct ExactSystem {
     power: std::sync::OnceLock<Option<[power::PowerForm; 2]>>,
 }
 
-/// `[[f_u, f_v], [g_u, g_v]]` and their partials (`d2[k][d][e]`), with
-/// interval coefficients that enclose the exact ones.
+/// `[[f_u, f_v], [g_u, g_v]]` with interval coefficients that enclose the
+/// exact ones.
 #[derive(Clone, Debug)]
 struct FloatDerivs {
     d1: [[FPoly; 2]; 2],
-    d2: [[[FPoly; 2]; 2]; 2],
 }
 
 /// A [`Poly`] with `f64` interval coefficients enclosing its own.
@@ -179,6 +179,51 @@ impl FPoly {
             FPoly::Triangle(t) => t.value(u, v),
             FPoly::Tensor(t) => t.value(u, v),
         }
+    }
+
+    /// An enclosure of the range over the box `u × v` (float endpoints, any
+    /// position) by the convex hull property: the coefficients on a piece
+    /// holding the box — the box itself on the square, the right triangle
+    /// with legs `Δu + Δv` at its lower-left corner on the triangle — by de
+    /// Casteljau at point parameters, their hull. Unlike interval de
+    /// Casteljau over `u × v` (whose excess is about the coefficients'
+    /// size times the width, hopeless where they cancel heavily), the excess
+    /// is of the order of the range's own variation plus rounding.
+    fn hull_over(&self, u: [f64; 2], v: [f64; 2]) -> Interval {
+        let pt = |x: f64| interval!(x, x).unwrap_or(Interval::ENTIRE);
+        let coeffs: Vec<Interval> = match self {
+            FPoly::Tensor(t) => {
+                let (m, n) = t.degree();
+                // The coefficients of one line on [a, b] ⊆ its parameter
+                // range (a superset: the second split point rounded up).
+                let restrict = |line: &[Interval], [a, b]: [f64; 2]| -> Vec<Interval> {
+                    if line.len() == 1 {
+                        return line.to_vec();
+                    }
+                    let (_, right) = split_coeffs(line, pt(a));
+                    let gamma = ((pt(b) - pt(a)) / (pt(1.0) - pt(a))).sup();
+                    split_coeffs(&right, pt(gamma)).0
+                };
+                let c = t.coeffs();
+                let rows: Vec<Vec<Interval>> = (0..=m)
+                    .map(|i| restrict(&c[i * (n + 1)..(i + 1) * (n + 1)], v))
+                    .collect();
+                let mut out = Vec::with_capacity((m + 1) * (n + 1));
+                for j in 0..=n {
+                    let col: Vec<Interval> = rows.iter().map(|r| r[j]).collect();
+                    out.extend(restrict(&col, u));
+                }
+                out
+            }
+            FPoly::Triangle(t) => {
+                let side = (pt(u[1]) - pt(u[0])) + (pt(v[1]) - pt(v[0]));
+                let bary = |a: Interval, b: Interval| [a, b, pt(1.0) - a - b];
+                let (u0, v0) = (pt(u[0]), pt(v[0]));
+                let verts = [bary(u0, v0), bary(u0 + side, v0), bary(u0, v0 + side)];
+                t.subdivide(&verts).coeffs().to_vec()
+            }
+        };
+        coeffs.iter().fold(Interval::EMPTY, |acc, c| acc.convex_hull(*c))
     }
 }
 
@@ -321,31 +366,27 @@ impl ExactSystem {
     fn float(&self) -> &FloatDerivs {
         self.float.get_or_init(|| FloatDerivs {
             d1: self.df().clone().map(|row| row.map(|p| FPoly::of(&p))),
-            d2: self.d2f().clone().map(|row| row.map(|ps| ps.map(|p| FPoly::of(&p)))),
         })
     }
 
-    /// The Jacobian over `x` enclosed in `f64` interval arithmetic: the
-    /// direct enclosure met with the centred form (see [`Self::jacobian`]).
-    /// Only `F(x̃)` must be exact for Krawczyk's operator to contract to a
+    /// The Jacobian over `x` enclosed in `f64` interval arithmetic: at a
+    /// point by interval de Casteljau, over a box by the hull of the
+    /// coefficients on a piece holding it ([`FPoly::hull_over`]). Only `F(x̃)` must be exact for Krawczyk's operator to contract to a
     /// simple root; `F'(X)` needs to be tight relative to `|F'|`, which
     /// `f64` gives unless the Jacobian itself is lost to rounding (then
     /// [`ExactSystem::certify`] falls back to the exact enclosure).
     fn jacobian_float(&self, x: &[RI; 2]) -> Option<[[RI; 2]; 2]> {
         let fl = self.float();
         let xf = [hull(&x[0]), hull(&x[1])];
-        let two = Q::from_integer(2.into());
-        let m = [0, 1].map(|e| hull(&RI::point((&x[e].lo + &x[e].hi) / &two)));
-        let dx = [xf[0] - m[0], xf[1] - m[1]];
+        let is_point = x.iter().all(|c| c.lo == c.hi);
         let mut out: [[Option<RI>; 2]; 2] = Default::default();
         for k in 0..2 {
             for d in 0..2 {
-                let direct = fl.d1[k][d].over(xf[0], xf[1]);
-                let mut centred = fl.d1[k][d].over(m[0], m[1]);
-                for e in 0..2 {
-                    centred = centred + fl.d2[k][d][e].over(xf[0], xf[1]) * dx[e];
-                }
-                let j = direct.intersection(centred);
+                let j = if is_point {
+                    fl.d1[k][d].over(xf[0], xf[1])
+                } else {
+                    fl.d1[k][d].hull_over([xf[0].inf(), xf[0].sup()], [xf[1].inf(), xf[1].sup()])
+                };
                 if !(j.inf().is_finite() && j.sup().is_finite()) {
                     return None;
                 }
