@@ -360,17 +360,7 @@ fn solve_exact_square(
         None,
     )?;
     if opts.square_route != SquareRoute::Triangles {
-        let ropts = rect::RectOptions {
-            eps: opts.eps,
-            max_boxes: opts.max_boxes,
-            clip: match opts.square_route {
-                SquareRoute::RectFatLine => rect::RectClip::FatLine,
-                SquareRoute::RectHybrid => rect::RectClip::Hybrid,
-                _ => rect::RectClip::Bezier,
-            },
-            deadline: opts.deadline,
-            ..rect::RectOptions::default()
-        };
+        let ropts = rect_options(opts);
         let sol = rect::solve_rect_exact(
             &ef.map(enclose),
             &eg.map(enclose),
@@ -596,7 +586,32 @@ pub(crate) fn solve_square(
     let (m, n) = f.degree();
     let (p, q) = g.degree();
     let (f, g) = (f.elevate(m.max(p), n.max(q))?, g.elevate(m.max(p), n.max(q))?);
+    if opts.square_route != SquareRoute::Triangles && m.max(p) >= 1 && n.max(q) >= 1 {
+        // (An input the box solver rejects goes to the triangles, which
+        // give their own answer or error.)
+        if let Ok(r) = rect::solve_rect(&f, &g, None, &rect_options(opts)) {
+            if r.solution.complete || opts.deadline.is_some_and(|d| std::time::Instant::now() >= d) {
+                return Ok(join_undecided(r.solution));
+            }
+        }
+        // Out of budget: the triangle route, as for exact input.
+    }
     square_pieces(&f, &g, None, opts).map(join_undecided)
+}
+
+/// The box solver's options for a solve's.
+fn rect_options(opts: &SolveOptions) -> rect::RectOptions {
+    rect::RectOptions {
+        eps: opts.eps,
+        max_boxes: opts.max_boxes,
+        clip: match opts.square_route {
+            SquareRoute::RectFatLine => rect::RectClip::FatLine,
+            SquareRoute::RectHybrid => rect::RectClip::Hybrid,
+            _ => rect::RectClip::Bezier,
+        },
+        deadline: opts.deadline,
+        ..rect::RectOptions::default()
+    }
 }
 
 type ExactHalves = ([TriBezier<BigRational>; 2], [TriBezier<BigRational>; 2]);

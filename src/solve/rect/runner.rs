@@ -106,7 +106,6 @@ impl Default for RectOptions {
 
 /// An objective `k = num/den` over the domain, with `den > 0` on it.
 #[derive(Clone, Copy, Debug)]
-#[cfg_attr(not(feature = "internals"), allow(dead_code))]
 pub struct Objective<'a> {
     /// The numerator.
     pub num: &'a TensorBezier<Interval>,
@@ -182,7 +181,6 @@ const MAX_MAGNITUDE: f64 = 1e300;
 /// let r = solve_rect(&f, &g, None, &RectOptions::default()).unwrap().solution;
 /// assert!(r.complete && r.roots.len() == 1 && r.roots[0].bx.contains(0.25, 0.75));
 /// ```
-#[cfg_attr(not(feature = "internals"), allow(dead_code))] // used by the ray and projection front ends through solve_rect_iv
 pub fn solve_rect(
     f: &TensorBezier<Interval>,
     g: &TensorBezier<Interval>,
