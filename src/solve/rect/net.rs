@@ -11,6 +11,35 @@ use crate::solve::krawczyk::IBox;
 /// and leaves are certified globally). The ray front end allows degree ≤ 20.
 pub(super) const STACK: usize = 24;
 
+/// Coefficients per polynomial up to which scratch copies live in fixed
+/// arrays (bicubic: 16).
+pub(super) const SMALL_LEN: usize = 16;
+
+/// Calls `$body` with `m` and `n` as constants for the
+/// small bidegrees (the bicubic of a typical patch is `(3, 3)`), so that the
+/// inlined kernel's loops are unrolled and free of bounds checks; the same
+/// operations in the same order as the general call, so the same floats.
+macro_rules! with_small_degrees {
+    ($sh:expr, |$m:ident, $n:ident| $body:expr) => {
+        match ($sh.m, $sh.n) {
+            (1, 1) => {
+                let ($m, $n) = (1, 1);
+                $body
+            }
+            (2, 2) => {
+                let ($m, $n) = (2, 2);
+                $body
+            }
+            (3, 3) => {
+                let ($m, $n) = (3, 3);
+                $body
+            }
+            ($m, $n) => $body,
+        }
+    };
+}
+pub(super) use with_small_degrees;
+
 /// The layout of a box's coefficients: `polys` polynomials of bidegree
 /// `(m, n)`, `len` coefficients each, row-major, one after the other.
 #[derive(Clone, Copy, Debug)]
@@ -86,6 +115,12 @@ impl Node {
 /// Hulls of `∂p/∂s` and `∂p/∂t` over the box, from the derivative's
 /// Bernstein coefficients.
 pub(super) fn jacobian_row(p: &[Iv], sh: Shape) -> [Iv; 2] {
+    with_small_degrees!(sh, |m, n| jacobian_row_in(p, m, n))
+}
+
+#[inline(always)]
+fn jacobian_row_in(p: &[Iv], m: usize, n: usize) -> [Iv; 2] {
+    let sh = Shape { m, n, len: (m + 1) * (n + 1), polys: 1 };
     let mut ds: Option<Iv> = None;
     let mut dt: Option<Iv> = None;
     for i in 0..=sh.m {
