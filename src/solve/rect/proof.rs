@@ -31,30 +31,6 @@ fn eval_local_in(p: &[Iv], m: usize, n: usize, s: f64, t: f64) -> Iv {
     col[0]
 }
 
-/// The value at the local point `(s, t)` of the polynomial with
-/// coefficients `mid` (the midpoints of a box's enclosures), in `f64` (a
-/// proposal, never a proof).
-#[inline(always)]
-fn eval_mid_in(mid: &[f64], m: usize, n: usize, s: f64, t: f64) -> f64 {
-    let mut col = [0.0f64; STACK];
-    let mut row = [0.0f64; STACK];
-    for i in 0..=m {
-        row[..=n].copy_from_slice(&mid[i * (n + 1)..=i * (n + 1) + n]);
-        for r in 1..=n {
-            for j in 0..=n - r {
-                row[j] += t * (row[j + 1] - row[j]);
-            }
-        }
-        col[i] = row[0];
-    }
-    for r in 1..=m {
-        for i in 0..=m - r {
-            col[i] += s * (col[i + 1] - col[i]);
-        }
-    }
-    col[0]
-}
-
 /// Krawczyk on `X = [0, 1]²` in the box's local coordinates (`rect` docs,
 /// step 3), then contraction ([`local::certify_unit_box`]).
 pub(super) fn local_krawczyk(c: &[Iv], sh: Shape) -> Verdict<[Iv; 2], ()> {
@@ -89,6 +65,38 @@ struct BoxSystem<'a> {
     sh: Shape,
 }
 
+/// The value and both partial derivatives at the local point `(s, t)` of
+/// the polynomial with coefficients `mid`, in `f64` (a proposal, never a
+/// proof): de Casteljau stopped one level short in each direction gives the
+/// two points whose difference is the derivative (times the degree).
+#[inline(always)]
+fn jet_mid_in(mid: &[f64], m: usize, n: usize, s: f64, t: f64) -> [f64; 3] {
+    let mut col = [0.0f64; STACK];
+    let mut dcol = [0.0f64; STACK];
+    let mut row = [0.0f64; STACK];
+    for i in 0..=m {
+        row[..=n].copy_from_slice(&mid[i * (n + 1)..=i * (n + 1) + n]);
+        for r in 1..n {
+            for j in 0..=n - r {
+                row[j] += t * (row[j + 1] - row[j]);
+            }
+        }
+        col[i] = row[0] + t * (row[1] - row[0]);
+        dcol[i] = n as f64 * (row[1] - row[0]);
+    }
+    for r in 1..m {
+        for i in 0..=m - r {
+            col[i] += s * (col[i + 1] - col[i]);
+        }
+    }
+    for r in 1..=m {
+        for i in 0..=m - r {
+            dcol[i] += s * (dcol[i + 1] - dcol[i]);
+        }
+    }
+    [col[0] + s * (col[1] - col[0]), m as f64 * (col[1] - col[0]), dcol[0]]
+}
+
 impl LocalSystem for BoxSystem<'_> {
     fn value(&self, s: f64, t: f64) -> [Iv; 2] {
         with_small_degrees!(self.sh, |m, n| [
@@ -97,12 +105,11 @@ impl LocalSystem for BoxSystem<'_> {
         ])
     }
 
-    fn value_mid(&self, s: f64, t: f64) -> [f64; 2] {
+    fn jet_mid(&self, s: f64, t: f64) -> ([f64; 2], [f64; 4]) {
         let (f, g) = self.mid.split_at(self.sh.len);
-        with_small_degrees!(self.sh, |m, n| [
-            eval_mid_in(f, m, n, s, t),
-            eval_mid_in(g, m, n, s, t)
-        ])
+        let [[fv, fs, ft], [gv, gs, gt]] =
+            with_small_degrees!(self.sh, |m, n| [jet_mid_in(f, m, n, s, t), jet_mid_in(g, m, n, s, t)]);
+        ([fv, gv], [fs, ft, gs, gt])
     }
 }
 
