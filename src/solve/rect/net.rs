@@ -120,30 +120,53 @@ pub(super) fn jacobian_row(p: &[Iv], sh: Shape) -> [Iv; 2] {
 
 #[inline(always)]
 fn jacobian_row_in(p: &[Iv], m: usize, n: usize) -> [Iv; 2] {
-    let sh = Shape { m, n, len: (m + 1) * (n + 1), polys: 1 };
-    let mut ds: Option<Iv> = None;
-    let mut dt: Option<Iv> = None;
-    for i in 0..=sh.m {
-        for j in 0..=sh.n {
-            let c = p[at(sh, i, j)];
-            if i < sh.m {
-                let x = p[at(sh, i + 1, j)].sub(c);
-                ds = Some(ds.map_or(x, |h| h.hull(x)));
+    // The hull of the differences, as running minima and maxima (the hull
+    // does not depend on the order; a NaN difference makes it NaN, as
+    // `Iv::hull` does).
+    let w = n + 1;
+    let mut ds = [f64::INFINITY, f64::NEG_INFINITY];
+    let mut dt = [f64::INFINITY, f64::NEG_INFINITY];
+    let mut nan = [false; 2];
+    let put = |h: &mut [f64; 2], nan: &mut bool, x: Iv| {
+        *nan |= x.lo.is_nan() || x.hi.is_nan();
+        h[0] = h[0].min(x.lo);
+        h[1] = h[1].max(x.hi);
+    };
+    for i in 0..=m {
+        for j in 0..=n {
+            let c = p[i * w + j];
+            if i < m {
+                put(&mut ds, &mut nan[0], p[(i + 1) * w + j].sub(c));
             }
-            if j < sh.n {
-                let x = p[at(sh, i, j + 1)].sub(c);
-                dt = Some(dt.map_or(x, |h| h.hull(x)));
+            if j < n {
+                put(&mut dt, &mut nan[1], p[i * w + j + 1].sub(c));
             }
         }
     }
-    let z = Iv::point(0.0);
-    [ds.unwrap_or(z).scale(sh.m as f64), dt.unwrap_or(z).scale(sh.n as f64)]
+    let hull = |h: [f64; 2], nan: bool, k: usize| {
+        if k == 0 {
+            Iv::point(0.0)
+        } else if nan {
+            Iv::new(f64::NAN, f64::NAN)
+        } else {
+            Iv::new(h[0], h[1])
+        }
+    };
+    [
+        hull(ds, nan[0], m).scale(m as f64),
+        hull(dt, nan[1], n).scale(n as f64),
+    ]
 }
 
 /// An enclosure of the polynomial with row-major coefficients `p` of
 /// bidegree `(m, n)` over the local box `s × t` (any floats, extrapolation
 /// included), by de Casteljau with [`Iv::lerp_range`].
 pub(crate) fn eval_box(p: &[Iv], m: usize, n: usize, s: [f64; 2], t: [f64; 2]) -> Iv {
+    with_small_degrees!(Shape::pair(m, n), |m, n| eval_box_in(p, m, n, s, t))
+}
+
+#[inline(always)]
+fn eval_box_in(p: &[Iv], m: usize, n: usize, s: [f64; 2], t: [f64; 2]) -> Iv {
     if m >= STACK || n >= STACK {
         return Iv::new(f64::NEG_INFINITY, f64::INFINITY);
     }
