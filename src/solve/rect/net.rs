@@ -3,7 +3,7 @@
 //! directly (signs, derivative hulls, enclosures over sub-boxes).
 
 use crate::scalar::interval;
-use crate::scalar::iv::Iv;
+use crate::scalar::iv::{down, up, Iv};
 use crate::solve::krawczyk::IBox;
 
 /// Scratch arrays on the stack hold this many coefficients per line; higher
@@ -120,26 +120,34 @@ pub(super) fn jacobian_row(p: &[Iv], sh: Shape) -> [Iv; 2] {
 
 #[inline(always)]
 fn jacobian_row_in(p: &[Iv], m: usize, n: usize) -> [Iv; 2] {
-    // The hull of the differences, as running minima and maxima (the hull
-    // does not depend on the order; a NaN difference makes it NaN, as
-    // `Iv::hull` does).
+    // The hull of the differences `c' − c` (each `[c'.lo − c.hi, c'.hi − c.lo]`
+    // moved outward by `down`/`up`, as `Iv::sub` does) taken before the
+    // outward move: `down` and `up` are nondecreasing in `r` (for `r < 0`
+    // both `r` and `−e(r)`, `e = fl(|r|·2⁻⁵¹ + ABS)`, grow with `r`; for
+    // `r ≥ 0` two floats `r₁ < r₂` are at least an ulp of `r₁` apart, more
+    // than `e` can grow between them, ~2⁻⁵¹ of that gap plus an ulp of `e`;
+    // and rounding is monotone), so `min down(r_k) = down(min r_k)` and
+    // `max up(r_k) = up(max r_k)`: the same floats as the hull of the
+    // `Iv::sub`s, with one move per hull instead of two per difference. A
+    // NaN difference makes the hull NaN, as `Iv::hull` does.
     let w = n + 1;
     let mut ds = [f64::INFINITY, f64::NEG_INFINITY];
     let mut dt = [f64::INFINITY, f64::NEG_INFINITY];
     let mut nan = [false; 2];
-    let put = |h: &mut [f64; 2], nan: &mut bool, x: Iv| {
-        *nan |= x.lo.is_nan() || x.hi.is_nan();
-        h[0] = h[0].min(x.lo);
-        h[1] = h[1].max(x.hi);
+    let put = |h: &mut [f64; 2], nan: &mut bool, a: Iv, c: Iv| {
+        let (lo, hi) = (a.lo - c.hi, a.hi - c.lo);
+        *nan |= lo.is_nan() || hi.is_nan();
+        h[0] = h[0].min(lo);
+        h[1] = h[1].max(hi);
     };
     for i in 0..=m {
         for j in 0..=n {
             let c = p[i * w + j];
             if i < m {
-                put(&mut ds, &mut nan[0], p[(i + 1) * w + j].sub(c));
+                put(&mut ds, &mut nan[0], p[(i + 1) * w + j], c);
             }
             if j < n {
-                put(&mut dt, &mut nan[1], p[i * w + j + 1].sub(c));
+                put(&mut dt, &mut nan[1], p[i * w + j + 1], c);
             }
         }
     }
@@ -149,13 +157,10 @@ fn jacobian_row_in(p: &[Iv], m: usize, n: usize) -> [Iv; 2] {
         } else if nan {
             Iv::new(f64::NAN, f64::NAN)
         } else {
-            Iv::new(h[0], h[1])
+            Iv::new(down(h[0]), up(h[1]))
         }
     };
-    [
-        hull(ds, nan[0], m).scale(m as f64),
-        hull(dt, nan[1], n).scale(n as f64),
-    ]
+    [hull(ds, nan[0], m).scale(m as f64), hull(dt, nan[1], n).scale(n as f64)]
 }
 
 /// An enclosure of the polynomial with row-major coefficients `p` of

@@ -19,7 +19,12 @@ const SPLIT: f64 = 63.0 / 128.0;
 pub(super) fn hull_spans(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
     with_small_degrees!(sh, |m, n| hull_spans_in(
         c,
-        Shape { m, n, len: (m + 1) * (n + 1), ..sh }
+        Shape {
+            m,
+            n,
+            len: (m + 1) * (n + 1),
+            ..sh
+        }
     ))
 }
 
@@ -79,7 +84,12 @@ fn zero_span(p: &[Iv], sh: Shape, d: usize) -> Option<(f64, f64)> {
 pub(super) fn preconditioned_spans(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
     with_small_degrees!(sh, |m, n| preconditioned_spans_in(
         c,
-        Shape { m, n, len: (m + 1) * (n + 1), ..sh }
+        Shape {
+            m,
+            n,
+            len: (m + 1) * (n + 1),
+            ..sh
+        }
     ))
 }
 
@@ -195,7 +205,12 @@ pub(super) fn split(node: &Node, sh: Shape, d: usize) -> (Node, Node) {
 fn subdivide_all(c: &mut [Iv], sh: Shape, d: usize, t: f64, right: bool) {
     with_small_degrees!(sh, |m, n| subdivide_all_in(
         c,
-        Shape { m, n, len: (m + 1) * (n + 1), ..sh },
+        Shape {
+            m,
+            n,
+            len: (m + 1) * (n + 1),
+            ..sh
+        },
         d,
         t,
         right
