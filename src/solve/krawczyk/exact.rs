@@ -44,9 +44,13 @@ pub(crate) trait RationalSystem {
 /// [`ExactSystem::certify`](crate::solve::settle::ExactSystem::certify).
 pub(crate) fn certify<S: RationalSystem>(sys: &S, bx: Box2) -> Verdict<Box2, ()> {
     let q = |x: f64| Q::from_float(x);
+    // In rationals: a float widening of a box a few ulps wide would round
+    // away (a root exactly on its edge, e.g. a corner of the domain, would
+    // stay on the widened box's edge, where K(X) ⊂ int X cannot hold).
     let widen = |b: [f64; 2]| {
-        let r = (b[1] - b[0]) / 10.0;
-        Some((q(b[0] - r)?, q(b[1] + r)?))
+        let (lo, hi) = (q(b[0])?, q(b[1])?);
+        let r = (&hi - &lo) / Q::from_integer(10.into());
+        Some((&lo - &r, &hi + &r))
     };
     let (Some((u0, u1)), Some((v0, v1))) = (widen(bx.u), widen(bx.v)) else {
         return Verdict::Undecided(());

@@ -245,17 +245,26 @@ pub(crate) fn solve_rect_exact(
     if !(unit(du) && unit(dv)) {
         return Err(Error::Shape("an exact system is solved on the unit square".into()));
     }
+    // Bidegree at least (1, 1) (the box solver's shape); the exact system
+    // is used only through boxes in domain coordinates.
     let (m, n) = f.degree();
-    if g.degree() != (m, n) || m == 0 || n == 0 {
-        return Err(Error::Shape("the exact route needs one bidegree ≥ (1, 1)".into()));
-    }
+    let (p, q) = g.degree();
+    let (m, n) = (m.max(p).max(1), n.max(q).max(1));
     let iv = |x: &Interval| Iv::new(x.inf(), x.sup());
+    let lift = |t: &TensorBezier<Interval>| -> Result<Vec<Iv>> {
+        let e = if t.degree() == (m, n) {
+            t.clone()
+        } else {
+            t.elevate(m, n)?
+        };
+        Ok(e.coeffs().iter().map(iv).collect())
+    };
     let problem = RectProblem {
         m,
         n,
         domain: [[Iv::point(0.0), Iv::point(1.0)]; 2],
-        f: f.coeffs().iter().map(iv).collect(),
-        g: g.coeffs().iter().map(iv).collect(),
+        f: lift(f)?,
+        g: lift(g)?,
         num: None,
         den: None,
         squares: None,
