@@ -1,11 +1,12 @@
 //! Surface/surface intersection timings: time per pair, per certified point,
 //! and how it grows with degree.
 //!
-//! `cargo run --release --example ssi_timing`
+//! `cargo run --release --example ssi_timing` (`SSI_REPS=n` sets the
+//! repetitions of every case, `SSI_ONLY=text` picks cases by name).
 
 use rootclip::glam::DVec3;
 use rootclip::ray::{Patch, TensorPatch};
-use rootclip::ssi::{intersect_surfaces, Intersection, SsiOptions};
+use rootclip::ssi::{intersect_surfaces, SsiOptions};
 use std::time::Instant;
 
 /// A height field over the square `[x0, x0 + w] × [y0, y0 + w]` rotated by
@@ -33,8 +34,17 @@ fn noise(seed: u64) -> impl Fn(usize, usize) -> f64 {
     }
 }
 
-fn run(name: &str, a: &Patch, b: &Patch, reps: usize) -> Intersection {
+fn run(name: &str, a: &Patch, b: &Patch, reps: usize) {
+    // `SSI_REPS=1` for profiling runs (callgrind, perf); `SSI_ONLY=text`
+    // runs only the cases whose name holds it.
+    let reps = std::env::var("SSI_REPS")
+        .ok()
+        .and_then(|r| r.parse().ok())
+        .unwrap_or(reps);
     let opts = SsiOptions::default();
+    if std::env::var("SSI_ONLY").is_ok_and(|only| !name.contains(&only)) {
+        return;
+    }
     let mut out = intersect_surfaces(a, b, &opts).unwrap();
     let t = Instant::now();
     for _ in 0..reps {
@@ -57,7 +67,6 @@ fn run(name: &str, a: &Patch, b: &Patch, reps: usize) -> Intersection {
     for s in &out.singular {
         println!("    singular {:?} a {:?} b {:?}", s.kind, s.a, s.b);
     }
-    out
 }
 
 fn main() {

@@ -182,3 +182,38 @@ fn triangle_against_paraboloid() {
         assert!((q.x - x).abs() < 1e-9 && (q.y - y).abs() < 1e-9);
     }
 }
+
+#[test]
+fn a_small_loop_is_found() {
+    // z = 10⁻⁴ cuts the paraboloid in a circle of radius 10⁻²: a loop far
+    // smaller than a tracer step, found by its turning points alone.
+    let (a, b) = (plane(1e-4, 1.0), paraboloid(1.0, 0.0));
+    let out = intersect_surfaces(&a, &b, &SsiOptions::default().with_tol(1e-6)).unwrap();
+    assert!(out.complete, "{:?}", out.singular);
+    assert_eq!(out.branches.len(), 1);
+    assert!(out.branches[0].closed && out.branches[0].points.len() >= 4);
+    on_both(&a, &b, &out);
+    for p in &out.branches[0].points {
+        assert!(p.certified);
+        assert!((p.xyz[0].powi(2) + p.xyz[1].powi(2) - 1e-4).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn barely_overlapping_patches_keep_their_arcs() {
+    // The paraboloid reaches z = 2 only at its corners; z = 2 − 10⁻⁴ cuts
+    // off four arcs about 10⁻⁴ long there, where the patches' bounding
+    // boxes overlap by 10⁻⁴ in z.
+    let (a, b) = (plane(2.0 - 1e-4, 2.0), paraboloid(1.0, 0.0));
+    let out = intersect_surfaces(&a, &b, &SsiOptions::default()).unwrap();
+    assert!(out.complete, "{:?}", out.singular);
+    assert_eq!(out.branches.len(), 4);
+    assert!(out.branches.iter().all(|b| !b.closed && b.points.len() >= 2));
+    on_both(&a, &b, &out);
+    for br in &out.branches {
+        for p in &br.points {
+            let [x, y, _] = p.xyz;
+            assert!((x * x + y * y - (2.0 - 1e-4)).abs() < 1e-9 && x.abs() > 0.99 && y.abs() > 0.99);
+        }
+    }
+}

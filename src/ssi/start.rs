@@ -23,6 +23,7 @@ use super::algebra::{turning, Poly};
 use super::system::{Box4, System};
 use crate::error::Error;
 use crate::scalar::iv::Iv;
+use crate::solve::nd::clip::elevate;
 use crate::solve::nd::tensor::len_of;
 use crate::solve::nd::{solve_nd, BernsteinNd, NdOptions};
 
@@ -149,8 +150,20 @@ fn turning_points(sys: &System, a: &[Poly; 4], b: &[Poly; 4], opts: &NdOptions, 
         if d.is_zero() {
             continue;
         }
-        let deg: [usize; 4] = std::array::from_fn(|k| d.deg[k]);
-        let eqs = [f[0].clone(), f[1].clone(), f[2].clone(), BernsteinNd { deg, c: d.c }];
+        // All four at common degrees, once: the solver's preconditioned
+        // clips combine the equations, and would raise `F` to the degrees
+        // of `D` on every box that stalls.
+        let top: [usize; 4] = std::array::from_fn(|k| d.deg[k].max(sys.degree()[k]));
+        let raise = |deg: &[usize], c: &[Iv]| BernsteinNd {
+            deg: top,
+            c: if deg == top { c.to_vec() } else { elevate(c, deg, &top) },
+        };
+        let eqs = [
+            raise(&f[0].deg, &f[0].c),
+            raise(&f[1].deg, &f[1].c),
+            raise(&f[2].deg, &f[2].c),
+            raise(&d.deg, &d.c),
+        ];
         match solve_nd(&eqs, opts) {
             Ok(sol) => {
                 out.boxes += sol.stats.boxes;

@@ -34,6 +34,37 @@ pub(crate) struct System {
     f: [Vec<Iv>; 3],
     /// `df[e][d]`: degrees and coefficients of `∂F_e/∂x_d`.
     df: Vec<Vec<(Vec<usize>, Vec<Iv>)>>,
+    /// The midpoints of `f`, for the `f64` proposals.
+    fm: [Vec<f64>; 3],
+}
+
+/// Degrees up to this per axis get the stack-buffer evaluation of
+/// [`System::value_jacobian`].
+const BASIS_MAX: usize = 40;
+
+/// The Bernstein basis `B^n_i(x)` and its derivative `n (B^{n−1}_{i−1} −
+/// B^{n−1}_i)` at `x` (any float), by the recurrence
+/// `B^r_i = (1 − x) B^{r−1}_i + x B^{r−1}_{i−1}`.
+fn basis(n: usize, x: f64, b: &mut [f64; BASIS_MAX + 1], db: &mut [f64; BASIS_MAX + 1]) {
+    b[0] = 1.0;
+    let s = 1.0 - x;
+    for r in 1..=n {
+        if r == n {
+            for i in 0..=n {
+                let lo = if i > 0 { b[i - 1] } else { 0.0 };
+                let hi = if i < n { b[i] } else { 0.0 };
+                db[i] = n as f64 * (lo - hi);
+            }
+        }
+        b[r] = x * b[r - 1];
+        for i in (1..r).rev() {
+            b[i] = s * b[i] + x * b[i - 1];
+        }
+        b[0] *= s;
+    }
+    if n == 0 {
+        db[0] = 0.0;
+    }
 }
 
 impl System {
@@ -49,7 +80,8 @@ impl System {
         let df = (0..3)
             .map(|e| (0..4).map(|d| derivative(&c[e], &deg, d)).collect())
             .collect();
-        Self { deg, f: c, df }
+        let fm = std::array::from_fn(|e| c[e].iter().map(|v| v.mid()).collect());
+        Self { deg, f: c, df, fm }
     }
 
     /// The common degrees `(m, n, p, q)`.
@@ -62,26 +94,70 @@ impl System {
         &self.f[e]
     }
 
-    /// `F(x)` in `f64` (a proposal).
-    pub(crate) fn value(&self, x: &[f64; 4]) -> [f64; 3] {
-        std::array::from_fn(|e| eval_mid(&self.f[e], &self.deg, x))
-    }
-
-    /// `F'(x)` in `f64`, 3×4.
-    pub(crate) fn jacobian(&self, x: &[f64; 4]) -> [[f64; 4]; 3] {
-        std::array::from_fn(|e| {
-            std::array::from_fn(|d| {
-                let (deg, c) = &self.df[e][d];
-                eval_mid(c, deg, x)
-            })
-        })
+    /// `F(x)` and `F'(x)` (3×4) in `f64`, proposals: the coefficients'
+    /// midpoints contracted with the Bernstein basis of each axis and its
+    /// derivative, axis by axis (forward mode), on the stack.
+    pub(crate) fn value_jacobian(&self, x: &[f64; 4]) -> ([f64; 3], [[f64; 4]; 3]) {
+        if self.deg.iter().any(|&n| n > BASIS_MAX) {
+            let v = std::array::from_fn(|e| eval_mid(&self.f[e], &self.deg, x));
+            let j = std::array::from_fn(|e| {
+                std::array::from_fn(|d| {
+                    let (deg, c) = &self.df[e][d];
+                    eval_mid(c, deg, x)
+                })
+            });
+            return (v, j);
+        }
+        let [n0, n1, n2, n3] = self.deg;
+        let mut b = [[0.0f64; BASIS_MAX + 1]; 4];
+        let mut db = [[0.0f64; BASIS_MAX + 1]; 4];
+        for d in 0..4 {
+            basis(self.deg[d], x[d], &mut b[d], &mut db[d]);
+        }
+        let mut val = [0.0f64; 3];
+        let mut jac = [[0.0f64; 4]; 3];
+        for e in 0..3 {
+            let c = &self.fm[e];
+            // (value, ∂0, ∂1, ∂2, ∂3) of the partial contractions.
+            let mut a0 = [0.0f64; 5];
+            for i in 0..=n0 {
+                let mut a1 = [0.0f64; 4];
+                for j in 0..=n1 {
+                    let mut a2 = [0.0f64; 3];
+                    for k in 0..=n2 {
+                        let base = ((i * (n1 + 1) + j) * (n2 + 1) + k) * (n3 + 1);
+                        let line = &c[base..base + n3 + 1];
+                        let (mut v, mut g3) = (0.0, 0.0);
+                        for (l, &cl) in line.iter().enumerate() {
+                            v += b[3][l] * cl;
+                            g3 += db[3][l] * cl;
+                        }
+                        a2[0] += b[2][k] * v;
+                        a2[1] += db[2][k] * v;
+                        a2[2] += b[2][k] * g3;
+                    }
+                    a1[0] += b[1][j] * a2[0];
+                    a1[1] += db[1][j] * a2[0];
+                    a1[2] += b[1][j] * a2[1];
+                    a1[3] += b[1][j] * a2[2];
+                }
+                a0[0] += b[0][i] * a1[0];
+                a0[1] += db[0][i] * a1[0];
+                a0[2] += b[0][i] * a1[1];
+                a0[3] += b[0][i] * a1[2];
+                a0[4] += b[0][i] * a1[3];
+            }
+            val[e] = a0[0];
+            jac[e] = [a0[1], a0[2], a0[3], a0[4]];
+        }
+        (val, jac)
     }
 
     /// The unit tangent of the curve at `x`: the signed 3×3 minors of
     /// `F'(x)` (`T_i = (−1)^i det F'` without column `i`), normalized;
     /// `None` where they all vanish (a singular point).
     pub(crate) fn tangent(&self, x: &[f64; 4]) -> Option<[f64; 4]> {
-        let j = self.jacobian(x);
+        let (_, j) = self.value_jacobian(x);
         let t: [f64; 4] = std::array::from_fn(|i| {
             let cols: Vec<usize> = (0..4).filter(|&c| c != i).collect();
             let m = |r: usize, k: usize| j[r][cols[k]];
@@ -104,8 +180,7 @@ impl System {
     pub(crate) fn correct(&self, mut x: [f64; 4], p: usize) -> Option<[f64; 4]> {
         let q = others(p);
         for _ in 0..12 {
-            let f = self.value(&x);
-            let j = self.jacobian(&x);
+            let (f, j) = self.value_jacobian(&x);
             let y = inverse::<3>(std::array::from_fn(|r| q.map(|c| j[r][c])))?;
             let mut size = 0.0f64;
             for (k, &c) in q.iter().enumerate() {
@@ -126,6 +201,13 @@ impl System {
     /// The tube test of the module docs on `P × Y` (`y` the three axes
     /// other than `p`, in order): `Some(K)` when `K(P, Y) ⊂ int Y`.
     pub(crate) fn tube(&self, p: usize, pr: [f64; 2], y: [[f64; 2]; 3]) -> Option<[[f64; 2]; 3]> {
+        let jac = self.jacobian_box(p, pr, &y)?;
+        inside_k(&self.krawczyk(p, pr, y, &jac)?, &y)
+    }
+
+    /// An enclosure of `∂_y F` (columns: the axes other than `p`) over
+    /// `P × Y`; `None` if not finite.
+    pub(crate) fn jacobian_box(&self, p: usize, pr: [f64; 2], y: &[[f64; 2]; 3]) -> Option<[[Iv; 3]; 3]> {
         let q = others(p);
         let mut full: Box4 = [[0.0; 2]; 4];
         full[p] = pr;
@@ -138,8 +220,19 @@ impl System {
                 eval_box(c, deg, &full)
             })
         });
-        if jac.iter().flatten().any(|x| !x.is_finite()) {
-            return None;
+        jac.iter().flatten().all(|x| x.is_finite()).then_some(jac)
+    }
+
+    /// `K(P, Y)` of the module docs, with `jac` an enclosure of `∂_y F`
+    /// over `P × Y` (or over any box holding it); `None` when the midpoint
+    /// Jacobian is singular or a bound is not finite. Outside a tube test
+    /// it only proposes (a box to try next).
+    pub(crate) fn krawczyk(&self, p: usize, pr: [f64; 2], y: [[f64; 2]; 3], jac: &[[Iv; 3]; 3]) -> Option<[Iv; 3]> {
+        let q = others(p);
+        let mut full: Box4 = [[0.0; 2]; 4];
+        full[p] = pr;
+        for (k, &c) in q.iter().enumerate() {
+            full[c] = y[k];
         }
         let cm = inverse::<3>(jac.map(|r| r.map(Iv::mid)))?;
         let ym: [f64; 3] = std::array::from_fn(|k| 0.5 * y[k][0] + 0.5 * y[k][1]);
@@ -147,24 +240,31 @@ impl System {
         for (k, &c) in q.iter().enumerate() {
             at[c] = [ym[k], ym[k]];
         }
-        // C·F(P, ỹ), enclosed twice: directly, and by the mean-value form
+        // C·F(P, ỹ), enclosed by the mean-value form
         // C·F(p̃, ỹ) + (C·∂_p F(P, ỹ))·(P − p̃), second order in |P| and
-        // free of the wrapping of a box by C (C·∂_p F ≈ −dy/dp); both hold.
-        let pm = 0.5 * pr[0] + 0.5 * pr[1];
-        let mut centre = at;
-        centre[p] = [pm, pm];
-        let dp = Iv::new(pr[0], pr[1]).sub(Iv::point(pm));
-        let direct: [Iv; 3] = std::array::from_fn(|e| eval_box(&self.f[e], &self.deg, &at));
-        let f0: [Iv; 3] = std::array::from_fn(|e| eval_box(&self.f[e], &self.deg, &centre));
-        let fp: [Iv; 3] = std::array::from_fn(|e| {
-            let (deg, c) = &self.df[e][p];
-            eval_box(c, deg, &at)
-        });
+        // free of the wrapping of a box by C (C·∂_p F ≈ −dy/dp). (Meeting
+        // it with the direct enclosure C·F(P, ỹ) cost three evaluations
+        // in 18 and saved no step.)
         let row = |r: usize, v: &[Iv; 3]| (0..3).fold(Iv::point(0.0), |s, c| s.add(Iv::point(cm[r][c]).mul(v[c])));
-        let mut out = [[0.0; 2]; 3];
+        let cfs: [Iv; 3] = if pr[0] == pr[1] {
+            // A hyperplane: `F(p, ỹ)` at a point, nothing to expand.
+            let f0: [Iv; 3] = std::array::from_fn(|e| eval_box(&self.f[e], &self.deg, &at));
+            std::array::from_fn(|r| row(r, &f0))
+        } else {
+            let pm = 0.5 * pr[0] + 0.5 * pr[1];
+            let mut centre = at;
+            centre[p] = [pm, pm];
+            let dp = Iv::new(pr[0], pr[1]).sub(Iv::point(pm));
+            let f0: [Iv; 3] = std::array::from_fn(|e| eval_box(&self.f[e], &self.deg, &centre));
+            let fp: [Iv; 3] = std::array::from_fn(|e| {
+                let (deg, c) = &self.df[e][p];
+                eval_box(c, deg, &at)
+            });
+            std::array::from_fn(|r| row(r, &f0).add(row(r, &fp).mul(dp)))
+        };
+        let mut out = [Iv::point(0.0); 3];
         for r in 0..3 {
-            let mv = row(r, &f0).add(row(r, &fp).mul(dp));
-            let cf = row(r, &direct).meet(mv).unwrap_or(mv);
+            let cf = cfs[r];
             let mut s = Iv::point(ym[r]).sub(cf);
             for c in 0..3 {
                 let mut m = Iv::point(if r == c { 1.0 } else { 0.0 });
@@ -173,16 +273,46 @@ impl System {
                 }
                 s = s.add(m.mul(Iv::new(y[c][0], y[c][1]).sub(Iv::point(ym[c]))));
             }
-            if !(s.is_finite() && s.inside_open(y[r][0], y[r][1])) {
+            if !s.is_finite() {
                 return None;
             }
-            out[r] = [s.lo, s.hi];
+            out[r] = s;
         }
         Some(out)
     }
 
+    /// As [`System::certify_point`], inside a proven tube: `jac` encloses
+    /// `∂_y F` over `tube`, so over every box `Y ⊂ tube` on the hyperplane,
+    /// and only `F(x_p, ỹ)` is evaluated. `None` if no box of radius
+    /// `1e-12`…`1e-8` (relative) inside the tube proves it.
+    pub(crate) fn certify_in(&self, x: &[f64; 4], p: usize, tube: &Box4, jac: &[[Iv; 3]; 3]) -> Option<Box4> {
+        let q = others(p);
+        let pr = [x[p], x[p]];
+        if !(tube[p][0] <= pr[0] && pr[1] <= tube[p][1]) {
+            return None;
+        }
+        for r in [1e-12, 1e-10, 1e-8] {
+            let y: [[f64; 2]; 3] = std::array::from_fn(|k| {
+                let c = x[q[k]];
+                let rad = r * (1.0 + c.abs());
+                [c - rad, c + rad]
+            });
+            if !(0..3).all(|k| tube[q[k]][0] <= y[k][0] && y[k][1] <= tube[q[k]][1]) {
+                return None;
+            }
+            if let Some(k) = self.krawczyk(p, pr, y, jac).and_then(|k| inside_k(&k, &y)) {
+                let mut out: Box4 = [[x[p], x[p]]; 4];
+                for (i, &c) in q.iter().enumerate() {
+                    out[c] = k[i];
+                }
+                return Some(out);
+            }
+        }
+        None
+    }
+
     /// Certifies the curve point near `x` on the hyperplane `x_p = x[p]`:
-    /// a box `Y` around it with `K ⊂ int Y`, contracted; `None` if no box
+    /// a box `Y` around it with `K ⊂ int Y`, returning `K`; `None` if no box
     /// of radius `1e-12`…`1e-6` (relative) proves it.
     pub(crate) fn certify_point(&self, x: &[f64; 4], p: usize) -> Option<Box4> {
         let q = others(p);
@@ -193,13 +323,10 @@ impl System {
                 let rad = r * (1.0 + c.abs());
                 [c - rad, c + rad]
             });
-            if let Some(mut k) = self.tube(p, pr, y) {
-                for _ in 0..3 {
-                    match self.tube(p, pr, k) {
-                        Some(kk) => k = kk,
-                        None => break,
-                    }
-                }
+            // One Krawczyk step from the Newton-converged point: `K` is
+            // already about as narrow as the rounding of `F` there, so
+            // iterating it would buy nothing.
+            if let Some(k) = self.tube(p, pr, y) {
                 let mut out: Box4 = [[x[p], x[p]]; 4];
                 for (i, &c) in q.iter().enumerate() {
                     out[c] = k[i];
@@ -209,6 +336,18 @@ impl System {
         }
         None
     }
+}
+
+/// `K` as float bounds when it lies in the interior of `y`.
+fn inside_k(k: &[Iv; 3], y: &[[f64; 2]; 3]) -> Option<[[f64; 2]; 3]> {
+    let mut out = [[0.0; 2]; 3];
+    for r in 0..3 {
+        if !k[r].inside_open(y[r][0], y[r][1]) {
+            return None;
+        }
+        out[r] = [k[r].lo, k[r].hi];
+    }
+    Some(out)
 }
 
 /// The three axes other than `p`, in order.

@@ -9,12 +9,19 @@
 //! 2. **Correct** by Newton's method on the hyperplane `x_p = const`
 //!    (seed 002's continuation: the curve cut by a plane across the marching
 //!    direction), and at the step's middle; the chord's deviation there, in
-//!    model space, must be at most `tol`, else the step is halved.
+//!    model space, must be below `tol`, else the step is shortened to bring
+//!    it to about `0.8·tol` (it grows as the square of the step). An
+//!    accepted step sets the next one's length the same way (at most
+//!    doubled, and below the last length the tube test refused); a failed
+//!    tube test shortens the step to 0.6 of it, any other rejection halves
+//!    it.
 //! 3. **Prove** the piece with the tube test of
 //!    [`system`](super::system): `K(P, Y) ⊂ int Y` on a box `P × Y` around
 //!    the step proves that the curve in it is one arc, a graph over `P`.
 //!    The new point is certified on its hyperplane (a box holding exactly
-//!    one curve point there), and both the old and the new point boxes must
+//!    one curve point there; one Krawczyk step from the Newton-converged
+//!    point, with the tube's enclosure of `∂_y F`, valid on every box inside
+//!    the tube), and both the old and the new point boxes must
 //!    lie in the tube: consecutive arcs share a curve point, so the traced
 //!    arcs form one connected piece of the curve, and no step can jump to
 //!    another branch (the tube holds no other curve point).
@@ -28,6 +35,7 @@
 //!    the step. Below a step of `10⁻⁹` the branch stops, unfinished.
 
 use super::system::{others, Box4, System};
+use crate::scalar::iv::Iv;
 
 /// How a branch ended.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -94,11 +102,27 @@ fn in_domain(x: &[f64; 4]) -> bool {
 
 /// What a proposed step turned out to be.
 enum Outcome {
-    /// Accepted: the new point, its certified box, the tube.
-    Step([f64; 4], Option<Box4>, Box4),
+    /// Accepted: the new point, its certified box, the tube, and the
+    /// factor for the next step's length.
+    Step([f64; 4], Box4, Box4, f64),
     /// Accepted and the branch ends (crossing or loop).
     Last(Box4, End),
-    Retry,
+    /// Rejected: try again with the step's length times this factor.
+    Retry(f64),
+    /// Rejected because the tube test failed: try again shorter, and
+    /// remember the length.
+    Unproven,
+}
+
+/// The factor that brings a chord deviation `dev` to about `0.8·tol`: the
+/// deviation grows as the square of the step.
+fn chord_factor(dev: f64, tol: f64) -> f64 {
+    let f = 0.8 * (tol / dev).sqrt();
+    if f.is_nan() {
+        0.5
+    } else {
+        f
+    }
 }
 
 impl Tracer<'_> {
@@ -170,14 +194,22 @@ impl Tracer<'_> {
         let mut x = x0;
         let mut xbox = sbox;
         let mut h = 0.02f64;
+        // Below the last length the tube test refused, raised by a tenth
+        // at each accepted step: chord control alone would double the step
+        // into the same refusal over and over.
+        let mut ceiling = MAX_STEP;
         loop {
             if tr.points.len() >= self.max_points {
                 tr.end = End::Stuck(xbox);
                 return tr;
             }
-            match self.step(&x, &xbox, &dir, h, start, &mut tr) {
-                Outcome::Retry => {
-                    h *= 0.5;
+            let outcome = self.step(&x, &xbox, &dir, h, start, &mut tr);
+            match outcome {
+                Outcome::Retry(_) | Outcome::Unproven => {
+                    (h, ceiling) = match outcome {
+                        Outcome::Retry(f) => (h * f, ceiling),
+                        _ => (0.6 * h, 0.9 * h),
+                    };
                     if h < MIN_STEP {
                         tr.end = End::Stuck(xbox);
                         return tr;
@@ -192,17 +224,18 @@ impl Tracer<'_> {
                     tr.end = end;
                     return tr;
                 }
-                Outcome::Step(xn, nbox, tube) => {
+                Outcome::Step(xn, nbox, tube, grow) => {
                     tr.tubes.push(tube);
-                    tr.points.push((xn, nbox.is_some()));
+                    tr.points.push((xn, true));
                     let Some(t) = self.oriented(&xn, &dir) else {
                         tr.end = End::Stuck(tube);
                         return tr;
                     };
                     dir = t;
                     x = xn;
-                    xbox = nbox.unwrap_or(tube);
-                    h = (h * 1.5).min(MAX_STEP);
+                    xbox = nbox;
+                    h = (h * grow).min(ceiling);
+                    ceiling = (1.1 * ceiling).min(MAX_STEP);
                 }
             }
         }
@@ -213,17 +246,17 @@ impl Tracer<'_> {
         let pred = self.predict(x, dir, h);
         let mid: [f64; 4] = std::array::from_fn(|i| 0.5 * (x[i] + pred[i]));
         let Some(tm) = self.oriented(&mid, dir) else {
-            return Outcome::Retry;
+            return Outcome::Retry(0.5);
         };
         let p = (0..4).max_by(|&a, &b| tm[a].abs().total_cmp(&tm[b].abs())).unwrap_or(0);
         let Some(xn) = self.sys.correct(pred, p) else {
-            return Outcome::Retry;
+            return Outcome::Retry(0.5);
         };
         if (xn[p] - x[p]) * tm[p] <= 0.0 {
-            return Outcome::Retry;
+            return Outcome::Retry(0.5);
         }
         let Some(xm) = self.sys.correct(std::array::from_fn(|i| 0.5 * (x[i] + xn[i])), p) else {
-            return Outcome::Retry;
+            return Outcome::Retry(0.5);
         };
         let (a, b, m) = (
             (self.xyz)(x[0], x[1]),
@@ -233,10 +266,10 @@ impl Tracer<'_> {
         let dev = (0..3).map(|i| (m[i] - 0.5 * (a[i] + b[i])).powi(2)).sum::<f64>().sqrt();
         // NaN counts as too far.
         if dev.partial_cmp(&self.tol) != Some(std::cmp::Ordering::Less) && h > 1e-6 {
-            return Outcome::Retry;
+            return Outcome::Retry(chord_factor(dev, self.tol).clamp(0.1, 0.5));
         }
-        let Some(tube) = self.prove(x, &xm, &xn, p, xbox) else {
-            return Outcome::Retry;
+        let Some((tube, jac)) = self.prove(x, &xm, &xn, p, xbox) else {
+            return Outcome::Unproven;
         };
         let first = tr.tubes.is_empty();
         // Crossings in the tube.
@@ -247,21 +280,21 @@ impl Tracer<'_> {
             }
             if overlap(c, &tube) {
                 if !inside(c, &tube) {
-                    return Outcome::Retry;
+                    return Outcome::Retry(0.5);
                 }
                 hits.push(k);
             }
         }
         if self.undecided.iter().any(|u| overlap(u, &tube)) {
-            return Outcome::Retry;
+            return Outcome::Retry(0.5);
         }
         if hits.len() > 1 {
-            return Outcome::Retry;
+            return Outcome::Retry(0.5);
         }
         if hits.is_empty() && !in_domain(&xn) {
             // The arc leaves the domain, so a crossing lies in the tube;
             // none was found whole in it: a smaller step.
-            return Outcome::Retry;
+            return Outcome::Retry(0.5);
         }
         let mut found = Vec::new();
         for (k, t) in self.turning.iter().enumerate() {
@@ -271,7 +304,7 @@ impl Tracer<'_> {
             }
             if overlap(t, &tube) {
                 if !inside(t, &tube) {
-                    return Outcome::Retry;
+                    return Outcome::Retry(0.5);
                 }
                 found.push(k);
             }
@@ -286,42 +319,57 @@ impl Tracer<'_> {
             let end = if closed { End::Closed } else { End::Crossing(hits[0]) };
             return Outcome::Last(tube, end);
         }
-        let nbox = self.sys.certify_point(&xn, p).filter(|b| inside(b, &tube));
+        let nbox = self
+            .sys
+            .certify_in(&xn, p, &tube, &jac)
+            .or_else(|| self.sys.certify_point(&xn, p))
+            .filter(|b| inside(b, &tube));
         let Some(nb) = nbox else {
-            return Outcome::Retry;
+            return Outcome::Retry(0.5);
         };
         for k in found {
             if !tr.turning.contains(&k) {
                 tr.turning.push(k);
             }
         }
-        Outcome::Step(xn, Some(nb), tube)
+        Outcome::Step(xn, nb, tube, chord_factor(dev, self.tol).clamp(0.5, 2.0))
     }
 
     /// The tube around the step `x → xn` (midpoint `xm`) along axis `p`,
     /// holding the previous point's box; `None` if not proven.
-    fn prove(&self, x: &[f64; 4], xm: &[f64; 4], xn: &[f64; 4], p: usize, xbox: &Box4) -> Option<Box4> {
+    ///
+    /// The first `Y` is the hull of the three points and the previous box,
+    /// padded by a quarter of its extent and a fifth of the step on each
+    /// axis: an axis the arc barely moves along must still absorb the
+    /// wrapping `(I − C·∂_y F)·(Y − ỹ)` of the wide ones, which grows with
+    /// the step, not with its own extent. The second is that `Y` joined
+    /// with `K(P, Y)` widened by a quarter of its width (ε-inflation).
+    fn prove(&self, x: &[f64; 4], xm: &[f64; 4], xn: &[f64; 4], p: usize, xbox: &Box4) -> Option<(Box4, [[Iv; 3]; 3])> {
         let q = others(p);
         let len = (xn[p] - x[p]).abs();
         let pad = 1e-3 * len + (xbox[p][1] - xbox[p][0]) + 1e-13;
         let pr = [x[p].min(xn[p]) - pad, x[p].max(xn[p]) + pad];
-        for grow in [0.25, 1.0] {
-            let y: [[f64; 2]; 3] = std::array::from_fn(|k| {
-                let c = q[k];
-                let lo = x[c].min(xm[c]).min(xn[c]).min(xbox[c][0]);
-                let hi = x[c].max(xm[c]).max(xn[c]).max(xbox[c][1]);
-                let r = grow * (hi - lo) + 0.05 * grow * len + 1e-12;
-                [lo - r, hi + r]
-            });
-            if self.sys.tube(p, pr, y).is_some() {
+        let mut y: [[f64; 2]; 3] = std::array::from_fn(|k| {
+            let c = q[k];
+            let lo = x[c].min(xm[c]).min(xn[c]).min(xbox[c][0]);
+            let hi = x[c].max(xm[c]).max(xn[c]).max(xbox[c][1]);
+            let r = 0.25 * (hi - lo) + 0.2 * len + 1e-12;
+            [lo - r, hi + r]
+        });
+        for _ in 0..2 {
+            let jac = self.sys.jacobian_box(p, pr, &y)?;
+            let k = self.sys.krawczyk(p, pr, y, &jac)?;
+            if (0..3).all(|r| k[r].inside_open(y[r][0], y[r][1])) {
                 let mut tube: Box4 = [pr; 4];
-                for (k, &c) in q.iter().enumerate() {
-                    tube[c] = y[k];
+                for (i, &c) in q.iter().enumerate() {
+                    tube[c] = y[i];
                 }
-                if inside(xbox, &tube) {
-                    return Some(tube);
-                }
+                return inside(xbox, &tube).then_some((tube, jac));
             }
+            y = std::array::from_fn(|r| {
+                let w = 0.25 * (k[r].hi - k[r].lo) + 1e-12;
+                [y[r][0].min(k[r].lo - w), y[r][1].max(k[r].hi + w)]
+            });
         }
         None
     }

@@ -99,14 +99,20 @@ pub(crate) fn elevate(c: &[Iv], deg: &[usize], to: &[usize]) -> Vec<Iv> {
         let mut nd = cd.clone();
         nd[d] = n;
         let mut out = vec![Iv::point(0.0); len_of(&nd)];
-        let weight = |i: usize, j: usize| -> Iv {
-            let num = binom(k, i) * binom(r, j - i);
-            exact_ish(num).div(exact_ish(binom(n, j)))
-        };
+        // The weights once per axis (their binomials are u128 divisions).
+        let mut weights = Vec::with_capacity((n + 1) * (k + 1));
+        for j in 0..=n {
+            for i in j.saturating_sub(r)..=k.min(j) {
+                let num = binom(k, i) * binom(r, j - i);
+                weights.push(exact_ish(num).div(exact_ish(binom(n, j))));
+            }
+        }
         for o in 0..outer {
+            let mut at = 0;
             for j in 0..=n {
                 for i in j.saturating_sub(r)..=k.min(j) {
-                    let wt = weight(i, j);
+                    let wt = weights[at];
+                    at += 1;
                     for x in 0..w {
                         let src = cur[(o * (k + 1) + i) * w + x];
                         let dst = &mut out[(o * (n + 1) + j) * w + x];

@@ -3,10 +3,11 @@
 //! sharper ingredients, since a leaf is where rounding hurts most.
 //!
 //! * `F(x̃)` is evaluated **exactly** at the float point `x̃` from the
-//!   coefficients' midpoints (rational de Casteljau), then widened by the
-//!   largest coefficient radius (the Bernstein basis is a non-negative
-//!   partition of unity, so a coefficient error of at most `r` moves the
-//!   value by at most `r`), then enclosed in floats outward.
+//!   coefficients' midpoints (rational de Casteljau), then widened by a
+//!   float bound `r` of the largest coefficient radius (the Bernstein basis
+//!   is a non-negative partition of unity, so a coefficient error of at
+//!   most `r` moves the value by at most `r`), then enclosed in floats
+//!   outward.
 //! * `F'(X)` is the enclosure over `X` of the derivatives computed once on
 //!   the whole domain (interval de Casteljau with parameter ranges), not the
 //!   hull of a restricted polynomial's differences, whose rounding is
@@ -17,52 +18,67 @@
 //! resolve.
 
 use super::tensor::{derivative, eval_box};
-use crate::scalar::iv::Iv;
+use crate::scalar::iv::{up, Iv};
 use crate::scalar::rational_to_interval;
 use crate::solve::krawczyk::Verdict;
+use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::Zero;
+use num_traits::{One, Zero};
 
 /// A square system on the domain with its derivatives.
+///
+/// The derivatives and radii are built on first use: most solves certify
+/// every zero by the local test and never reach a leaf.
 pub(crate) struct GlobalSystem<'a, const N: usize> {
     deg: [[usize; N]; N],
     c: &'a [Vec<Iv>],
+    parts: std::cell::OnceCell<Parts>,
+}
+
+/// What [`GlobalSystem`] derives from the coefficients.
+struct Parts {
     /// `d[e][k]`: degrees and coefficients of `∂f_e/∂x_k`.
     d: Vec<Vec<(Vec<usize>, Vec<Iv>)>>,
-    /// Largest coefficient radius of each equation (exact rational).
+    /// An upper bound of each equation's largest coefficient radius
+    /// (exact rational of a float).
     radius: Vec<BigRational>,
+}
+
+/// An upper bound of `max(hi − mid, mid − lo)` over the coefficients, in
+/// `f64`: each difference rounded to nearest, then moved up by [`up`] (so
+/// it is at least the exact one).
+fn radius_bound(eq: &[Iv]) -> f64 {
+    eq.iter()
+        .filter(|x| x.lo != x.hi)
+        .map(|x| {
+            let m = x.mid();
+            up((x.hi - m).max(m - x.lo))
+        })
+        .fold(0.0f64, f64::max)
 }
 
 impl<'a, const N: usize> GlobalSystem<'a, N> {
     pub(crate) fn new(deg: [[usize; N]; N], c: &'a [Vec<Iv>]) -> Self {
-        let d = (0..N)
-            .map(|e| (0..N).map(|k| derivative(&c[e], &deg[e], k)).collect())
-            .collect();
-        let radius = c
-            .iter()
-            .map(|eq| {
-                eq.iter()
-                    .filter(|x| x.lo != x.hi)
-                    .map(|x| {
-                        let (m, lo, hi) = (q(x.mid()), q(x.lo), q(x.hi));
-                        let a = &hi - &m;
-                        let b = &m - &lo;
-                        if a > b {
-                            a
-                        } else {
-                            b
-                        }
-                    })
-                    .fold(BigRational::zero(), |a, b| if b > a { b } else { a })
-            })
-            .collect();
-        Self { deg, c, d, radius }
+        Self {
+            deg,
+            c,
+            parts: std::cell::OnceCell::new(),
+        }
+    }
+
+    fn parts(&self) -> &Parts {
+        self.parts.get_or_init(|| Parts {
+            d: (0..N)
+                .map(|e| (0..N).map(|k| derivative(&self.c[e], &self.deg[e], k)).collect())
+                .collect(),
+            radius: self.c.iter().map(|eq| q(radius_bound(eq))).collect(),
+        })
     }
 
     /// `f_e(x)` enclosed (module docs: exact, plus the radius).
     fn value(&self, e: usize, x: &[f64; N]) -> Iv {
         let v = eval_exact(&self.c[e], &self.deg[e], x);
-        let r = &self.radius[e];
+        let r = &self.parts().radius[e];
         let lo = rational_to_interval(&(&v - r)).inf();
         let hi = rational_to_interval(&(&v + r)).sup();
         Iv::new(lo, hi)
@@ -71,7 +87,7 @@ impl<'a, const N: usize> GlobalSystem<'a, N> {
     fn jacobian(&self, x: &[[f64; 2]; N]) -> [[Iv; N]; N] {
         std::array::from_fn(|e| {
             std::array::from_fn(|k| {
-                let (deg, c) = &self.d[e][k];
+                let (deg, c) = &self.parts().d[e][k];
                 eval_box(c, deg, &x[..])
             })
         })
@@ -129,15 +145,39 @@ fn q(x: f64) -> BigRational {
     BigRational::from_float(x).unwrap_or_else(BigRational::zero)
 }
 
+/// `x = m / 2^k` with `m` an integer and `k ≥ 0` (every finite float is
+/// one).
+fn dyadic(x: f64) -> (BigInt, u32) {
+    if x == 0.0 || !x.is_finite() {
+        return (BigInt::zero(), 0);
+    }
+    let (mant, exp, sign) = num_traits::Float::integer_decode(x);
+    let tz = mant.trailing_zeros() as i32;
+    let (mant, exp) = (mant >> tz, i32::from(exp) + tz);
+    let m = BigInt::from(mant) * i64::from(sign);
+    if exp >= 0 {
+        (m << exp as u32, 0)
+    } else {
+        (m, exp.unsigned_abs())
+    }
+}
+
 /// The exact value at the float point `x` of the polynomial whose
-/// coefficients are the midpoints of `c` (rational de Casteljau).
+/// coefficients are the midpoints of `c` (de Casteljau in exact dyadic
+/// arithmetic: every float is an integer over a power of two, and so is
+/// every de Casteljau value at float parameters, so the values are kept as
+/// integer numerators over one common power of two and reduced once, at the
+/// end).
 pub(crate) fn eval_exact(c: &[Iv], deg: &[usize], x: &[f64]) -> BigRational {
-    let mut work: Vec<BigRational> = c.iter().map(|v| q(v.mid())).collect();
+    let parts: Vec<(BigInt, u32)> = c.iter().map(|v| dyadic(v.mid())).collect();
+    let mut shift = parts.iter().map(|p| p.1).max().unwrap_or(0);
+    let mut work: Vec<BigInt> = parts.into_iter().map(|(m, k)| m << (shift - k)).collect();
     let mut len = work.len();
     for d in (0..deg.len()).rev() {
         let n = deg[d];
-        let t = q(x[d]);
-        let s = BigRational::from_integer(1.into()) - &t;
+        // (1 − t)·a + t·b = ((2^k − m)·a + m·b) / 2^k for t = m / 2^k.
+        let (t, k) = dyadic(x[d]);
+        let s = (BigInt::one() << k) - &t;
         let lines = len / (n + 1);
         for l in 0..lines {
             let base = l * (n + 1);
@@ -150,6 +190,61 @@ pub(crate) fn eval_exact(c: &[Iv], deg: &[usize], x: &[f64]) -> BigRational {
             work.swap(l, base);
         }
         len = lines;
+        shift += n as u32 * k;
     }
-    work.swap_remove(0)
+    let num = work.swap_remove(0);
+    BigRational::new(num, BigInt::one() << shift)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Rational de Casteljau, one reduced fraction per value: the reference.
+    fn eval_rational(c: &[f64], deg: &[usize], x: &[f64]) -> BigRational {
+        let mut work: Vec<BigRational> = c.iter().map(|&v| q(v)).collect();
+        let mut len = work.len();
+        for d in (0..deg.len()).rev() {
+            let n = deg[d];
+            let t = q(x[d]);
+            let s = BigRational::one() - &t;
+            let lines = len / (n + 1);
+            for l in 0..lines {
+                let base = l * (n + 1);
+                for r in 1..=n {
+                    for i in 0..=n - r {
+                        work[base + i] = &s * &work[base + i] + &t * &work[base + i + 1];
+                    }
+                }
+                work.swap(l, base);
+            }
+            len = lines;
+        }
+        work.swap_remove(0)
+    }
+
+    #[test]
+    fn dyadic_evaluation_is_exact() {
+        // Coefficients of mixed magnitudes and signs, parameters inside,
+        // on the faces and outside the unit box (an inflated leaf).
+        let deg = [2usize, 3, 1];
+        let c: Vec<f64> = (0..24)
+            .map(|k| {
+                let v = ((k * 7919) % 23) as f64 - 11.3;
+                v * [1.0, 1e-9, 3.0e5, 0.1][k % 4]
+            })
+            .collect();
+        let iv: Vec<Iv> = c.iter().map(|&v| Iv::point(v)).collect();
+        for x in [
+            [0.3, 0.7, 0.1],
+            [0.0, 1.0, 0.5],
+            [-1e-3, 1.000001, 0.123456789],
+            [1e-300, 0.5, 2.0],
+        ] {
+            assert_eq!(eval_exact(&iv, &deg, &x), eval_rational(&c, &deg, &x));
+        }
+        let (m, k) = dyadic(0.75);
+        assert_eq!((m, k), (BigInt::from(3), 2));
+        assert_eq!(dyadic(-40.0), (BigInt::from(-40), 0));
+    }
 }

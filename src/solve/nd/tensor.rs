@@ -270,24 +270,31 @@ pub(crate) fn eval_box(c: &[Iv], deg: &[usize], bx: &[[f64; 2]]) -> Iv {
     for d in (0..deg.len()).rev() {
         let n = deg[d];
         let [t0, t1] = bx[d];
-        len = collapse_last(&mut work[..len], n, |line| {
-            if t0 == t1 {
-                for r in 1..=n {
-                    for i in 0..=n - r {
-                        line[i] = lerp(line[i], line[i + 1], t0);
-                    }
-                }
-            } else {
-                for r in 1..=n {
-                    for i in 0..=n - r {
-                        line[i] = Iv::lerp_range(line[i], line[i + 1], t0, t1);
-                    }
-                }
-            }
-            line[0]
-        });
+        // The kind of step decided once per axis, not once per lerp: the
+        // steps are those of `lerp_range`, inlined.
+        let unit = (0.0..=1.0).contains(&t0) && (0.0..=1.0).contains(&t1);
+        let w = &mut work[..len];
+        len = match (t0 == t1, unit) {
+            (true, true) => collapse_last(w, n, |line| casteljau(line, |a, b| Iv::lerp(a, b, t0))),
+            (false, true) => collapse_last(w, n, |line| {
+                casteljau(line, |a, b| Iv::lerp(a, b, t0).hull(Iv::lerp(a, b, t1)))
+            }),
+            _ => collapse_last(w, n, |line| casteljau(line, |a, b| Iv::lerp_range(a, b, t0, t1))),
+        };
     }
     work[0]
+}
+
+/// De Casteljau's triangle on one line with the step `step(a, b)`.
+#[inline(always)]
+fn casteljau(line: &mut [Iv], step: impl Fn(Iv, Iv) -> Iv) -> Iv {
+    let n = line.len() - 1;
+    for r in 1..=n {
+        for i in 0..=n - r {
+            line[i] = step(line[i], line[i + 1]);
+        }
+    }
+    line[0]
 }
 
 /// The value at the point `x` of the polynomial whose coefficients are the
