@@ -368,18 +368,50 @@ fn solve_exact_square(
             &ropts,
         )?
         .solution;
-        if sol.complete || opts.deadline.is_some_and(|d| std::time::Instant::now() >= d) {
-            return Ok(finish_exact(sol, &sys, opts.deadline));
+        let late = || opts.deadline.is_some_and(|d| std::time::Instant::now() >= d);
+        if !sol.complete && !late() {
+            // Out of budget (e.g. two curves running nearly parallel
+            // along a diagonal, which axis-aligned boxes separate only
+            // when they are as thin as the gap): the triangle route's fat
+            // curves and exact restarts handle those.
+            return solve_exact_square_triangles(&ef, &eg, &sys, opts);
         }
-        // Out of budget (e.g. two curves running nearly parallel
-        // along a diagonal, which axis-aligned boxes separate only
-        // when they are as thin as the gap): the triangle route's fat
-        // curves and exact restarts handle those.
+        let sol = finish_exact(sol, &sys, opts.deadline);
+        let stuck = sol
+            .clusters
+            .iter()
+            .any(|c| c.reason == UndecidedReason::MultipleOrClose);
+        if stuck && dm + dn <= TRIANGLES_RETRY_DEGREE && !late() {
+            // Two simple roots closer than rounding separates on boxes (a
+            // line nearly tangent to a conic): the triangles' exact
+            // restarts may separate them. Both answers are certified; the
+            // one with fewer undecided regions is kept.
+            let tri = solve_exact_square_triangles(&ef, &eg, &sys, opts)?;
+            if tri.complete && tri.clusters.len() < sol.clusters.len() {
+                return Ok(tri);
+            }
+        }
+        return Ok(sol);
     }
+    solve_exact_square_triangles(&ef, &eg, &sys, opts)
+}
+
+/// Bidegrees `m + n` up to which a box-route answer with undecided regions
+/// is retried on the two triangles (of degree `m + n`).
+const TRIANGLES_RETRY_DEGREE: usize = 24;
+
+/// The exact square as two triangles of degree `m + n`.
+fn solve_exact_square_triangles(
+    ef: &TensorBezier<BigRational>,
+    eg: &TensorBezier<BigRational>,
+    sys: &settle::ExactSystem,
+    opts: &SolveOptions,
+) -> Result<Solution> {
+    let enclose = |q: &BigRational| Interval::from_rational(q);
     let exact = Some((ef.to_triangles()?, eg.to_triangles()?));
     Ok(finish_exact(
         square_pieces(&ef.map(enclose), &eg.map(enclose), exact, opts)?,
-        &sys,
+        sys,
         opts.deadline,
     ))
 }
