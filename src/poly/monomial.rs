@@ -266,15 +266,7 @@ impl Polynomial {
         let (m, n) = self.degrees();
         let (m, n) = (m as usize, n as usize);
         let top = m.max(n);
-        let mut pascal: Vec<Vec<BigInt>> = vec![vec![BigInt::one()]];
-        for k in 1..=top {
-            let prev = &pascal[k - 1];
-            let mut row = vec![BigInt::one(); k + 1];
-            for i in 1..k {
-                row[i] = &prev[i - 1] + &prev[i];
-            }
-            pascal.push(row);
-        }
+        let pascal = super::l2::pascal(top);
         let lcm_row = |k: usize| pascal[k].iter().fold(BigInt::one(), |acc, c| acc.lcm(c));
         let (cm, cn) = (lcm_row(m), lcm_row(n));
         let den_l = self.terms.values().fold(BigInt::one(), |acc, c| acc.lcm(c.denom()));
@@ -292,8 +284,9 @@ impl Polynomial {
             let t: Vec<BigInt> = (0..=n)
                 .map(|b| (0..=i).fold(BigInt::zero(), |acc, a| acc + &w[a][b] * &pascal[i][a]))
                 .collect();
-            for j in 0..=n {
-                let s = (0..=j).fold(BigInt::zero(), |acc, b| acc + &t[b] * &pascal[j][b]);
+            for row in &pascal[..=n] {
+                // row = C(j, ·) for j = 0..=n
+                let s = row.iter().zip(&t).fold(BigInt::zero(), |acc, (c, tb)| acc + tb * c);
                 coeffs.push(BigRational::new(s, den.clone()));
             }
         }

@@ -89,31 +89,21 @@ fn jet_mid_in(mid: &[f64], m: usize, n: usize, s: f64, t: f64) -> [f64; 3] {
         let mut col = [0.0f64; STACK];
         let mut dcol = [0.0f64; STACK];
         let mut row = [0.0f64; STACK];
-        jet_mid_with(mid, m, n, s, t, &mut col, &mut dcol, &mut row)
+        jet_mid_with(mid, (m, n), (s, t), [&mut col, &mut dcol, &mut row])
     } else {
-        jet_mid_with(
-            mid,
-            m,
-            n,
-            s,
-            t,
-            &mut vec![0.0f64; m + 1],
-            &mut vec![0.0f64; m + 1],
-            &mut vec![0.0f64; n + 1],
-        )
+        let (mut col, mut dcol, mut row) = (vec![0.0; m + 1], vec![0.0; m + 1], vec![0.0; n + 1]);
+        jet_mid_with(mid, (m, n), (s, t), [&mut col, &mut dcol, &mut row])
     }
 }
 
+/// [`jet_mid_in`] with scratch `[col, dcol, row]` (at least `m + 1`,
+/// `m + 1`, `n + 1` long).
 #[inline(always)]
 fn jet_mid_with(
     mid: &[f64],
-    m: usize,
-    n: usize,
-    s: f64,
-    t: f64,
-    col: &mut [f64],
-    dcol: &mut [f64],
-    row: &mut [f64],
+    (m, n): (usize, usize),
+    (s, t): (f64, f64),
+    [col, dcol, row]: [&mut [f64]; 3],
 ) -> [f64; 3] {
     for i in 0..=m {
         row[..=n].copy_from_slice(&mid[i * (n + 1)..=i * (n + 1) + n]);

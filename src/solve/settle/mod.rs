@@ -371,29 +371,28 @@ impl ExactSystem {
 
     /// The Jacobian over `x` enclosed in `f64` interval arithmetic: at a
     /// point by interval de Casteljau, over a box by the hull of the
-    /// coefficients on a piece holding it ([`FPoly::hull_over`]). Only `F(x̃)` must be exact for Krawczyk's operator to contract to a
-    /// simple root; `F'(X)` needs to be tight relative to `|F'|`, which
+    /// coefficients on a piece holding it ([`FPoly::hull_over`]). Only
+    /// `F(x̃)` must be exact for Krawczyk's operator to contract to a simple
+    /// root; `F'(X)` needs to be tight relative to `|F'|`, which
     /// `f64` gives unless the Jacobian itself is lost to rounding (then
     /// [`ExactSystem::certify`] falls back to the exact enclosure).
     fn jacobian_float(&self, x: &[RI; 2]) -> Option<[[RI; 2]; 2]> {
         let fl = self.float();
         let xf = [hull(&x[0]), hull(&x[1])];
         let is_point = x.iter().all(|c| c.lo == c.hi);
-        let mut out: [[Option<RI>; 2]; 2] = Default::default();
-        for k in 0..2 {
-            for d in 0..2 {
-                let j = if is_point {
-                    fl.d1[k][d].over(xf[0], xf[1])
-                } else {
-                    fl.d1[k][d].hull_over([xf[0].inf(), xf[0].sup()], [xf[1].inf(), xf[1].sup()])
-                };
-                if !(j.inf().is_finite() && j.sup().is_finite()) {
-                    return None;
-                }
-                out[k][d] = exact_iv(j);
+        let entry = |p: &FPoly| -> Option<RI> {
+            let j = if is_point {
+                p.over(xf[0], xf[1])
+            } else {
+                p.hull_over([xf[0].inf(), xf[0].sup()], [xf[1].inf(), xf[1].sup()])
+            };
+            if !(j.inf().is_finite() && j.sup().is_finite()) {
+                return None;
             }
-        }
-        let [[a, b], [c, d]] = out;
+            exact_iv(j)
+        };
+        let [[a, b], [c, d]] = &fl.d1;
+        let [[a, b], [c, d]] = [[entry(a), entry(b)], [entry(c), entry(d)]];
         Some([[a?, b?], [c?, d?]])
     }
 

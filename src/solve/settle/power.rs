@@ -28,6 +28,7 @@ impl PowerForm {
     /// `a_ij = C(n,i) C(n−i,j) Δ_u^i Δ_v^j c_00` (with `c_pq` the
     /// coefficient of `u^p v^q w^(n−p−q)`); the differences in `u` first,
     /// then in `v`: `O(mn(m + n))` or `O(n³)` integer operations.
+    #[allow(clippy::needless_range_loop)] // the formula's indices read best
     pub(super) fn new(shape: Shape, c: &[BigRational]) -> Option<Self> {
         let int = |q: &BigRational| q.denom().is_one().then(|| q.numer().clone());
         let (m, n, tri) = match shape {
@@ -35,16 +36,7 @@ impl PowerForm {
             Shape::Triangle(n) => (n, n, true),
         };
         let top = m.max(n);
-        // Pascal's triangle up to `top`.
-        let mut binom: Vec<Vec<BigInt>> = vec![vec![BigInt::one()]];
-        for k in 1..=top {
-            let prev = &binom[k - 1];
-            let mut row = vec![BigInt::one(); k + 1];
-            for i in 1..k {
-                row[i] = &prev[i - 1] + &prev[i];
-            }
-            binom.push(row);
-        }
+        let binom = crate::poly::pascal(top);
         // c_pq, or None outside the triangle.
         let at = |p: usize, q: usize| -> Option<BigInt> {
             if tri {
