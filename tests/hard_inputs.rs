@@ -232,3 +232,103 @@ fn a_deadline_ends_a_solve_incomplete_with_leftovers() {
         );
     }
 }
+
+/// `∏ (a u + b v + c)` as an expression.
+fn lines_product(lines: &[(i64, i64, i64, i64)]) -> String {
+    lines
+        .iter()
+        .map(|(a, b, c, d)| format!("(({a})*u + ({b})*v + ({c})/({d}))"))
+        .collect::<Vec<_>>()
+        .join("*")
+}
+
+/// Every root certified, none undecided, `complete`, and each expected
+/// crossing (exact rationals `(u, v)`) inside exactly one root box.
+fn assert_all_certified(f: &str, g: &str, domain: rootclip::solve::Domain, route: SquareRoute, want: &[(f64, f64)]) {
+    use rootclip::poly::parse_polynomial;
+    use rootclip::solve::{solve, SolveOptions};
+    let (f, g) = (parse_polynomial(f).unwrap(), parse_polynomial(g).unwrap());
+    let sol = solve(&f, &g, domain, &SolveOptions::default().with_square_route(route)).unwrap();
+    assert!(
+        sol.complete && sol.clusters.is_empty(),
+        "{route:?}: {} clusters",
+        sol.clusters.len()
+    );
+    assert_eq!(sol.roots.len(), want.len(), "{route:?}");
+    for &(u, v) in want {
+        let n = sol.roots.iter().filter(|r| r.bx.contains(u, v)).count();
+        assert_eq!(n, 1, "{route:?}: ({u}, {v}) in {n} boxes");
+    }
+}
+
+/// A pencil of ten lines through `(0, ½)` on the square's edge against two
+/// verticals: 20 simple roots 1/30 apart in `v`, where `∂f/∂v` is ~1e-10
+/// and the coefficients' rounding hides the sign in a band ~1e-7 wide (the
+/// box route used to leave 6 of them as clusters).
+#[test]
+fn a_pencil_through_an_edge_point_is_all_certified() {
+    use rootclip::solve::Domain;
+    // v = ½ + s u with s = (k − 5)/10 + 1/20: 20 s u − 20 v + 10 = 0, with
+    // 20 s = 2k − 9.
+    let pencil: Vec<(i64, i64, i64, i64)> = (0..10).map(|k| (2 * k - 9, -20, 10, 1)).collect();
+    let f = lines_product(&pencil);
+    let g = "(u - 1/3)*(u - 2/3)";
+    let mut want = Vec::new();
+    for u in [1.0 / 3.0, 2.0 / 3.0] {
+        for k in 0..10 {
+            want.push((u, 0.5 + (2 * k - 9) as f64 / 20.0 * u));
+        }
+    }
+    for route in [SquareRoute::Rect, SquareRoute::Triangles] {
+        assert_all_certified(&f, g, Domain::Square, route, &want);
+    }
+}
+
+/// Grids of lines `∏ (u − i/(n+1)) = ∏ (v − j/(n+1)) = 0`: `n²` simple roots
+/// (on the triangle, those with `u + v ≤ 1`), all certified. Degree 12 here
+/// (the degree 20–25 cases of `dev/hard/families.py` take seconds).
+#[test]
+fn grids_of_lines_are_all_certified() {
+    use rootclip::solve::Domain;
+    let n = 12;
+    let d = n + 1;
+    let f = lines_product(&(1..=n).map(|i| (1, 0, -i, d)).collect::<Vec<_>>());
+    let g = lines_product(&(1..=n).map(|j| (0, 1, -j, d)).collect::<Vec<_>>());
+    let mut square = Vec::new();
+    let mut triangle = Vec::new();
+    for i in 1..=n {
+        for j in 1..=n {
+            let (u, v) = (i as f64 / d as f64, j as f64 / d as f64);
+            square.push((u, v));
+            if i + j <= d {
+                triangle.push((u, v));
+            }
+        }
+    }
+    assert_all_certified(&f, &g, Domain::Square, SquareRoute::Rect, &square);
+    assert_all_certified(&f, &g, Domain::Triangle, SquareRoute::Triangles, &triangle);
+}
+
+/// Degrees the box route's scratch arrays once did not hold (≥ 24: no
+/// clipping, no local Krawczyk, only subdivision): one root each, certified.
+#[test]
+fn high_degree_squares_end_with_their_root() {
+    use rootclip::solve::Domain;
+    let half = 0.5f64;
+    assert_all_certified(
+        "u^60 - 1/2",
+        "v^60 - 1/3",
+        Domain::Square,
+        SquareRoute::Rect,
+        &[(half.powf(1.0 / 60.0), (1.0f64 / 3.0).powf(1.0 / 60.0))],
+    );
+    assert_all_certified(
+        "u^200 - 1/2",
+        "v - 1/3",
+        Domain::Square,
+        SquareRoute::Rect,
+        &[(half.powf(1.0 / 200.0), 1.0 / 3.0)],
+    );
+    let r = 0.5 * half.powf(1.0 / 40.0);
+    assert_all_certified("(u+v)^40 - 1/2", "u - v", Domain::Square, SquareRoute::Rect, &[(r, r)]);
+}

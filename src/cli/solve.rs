@@ -46,9 +46,9 @@ pub(super) struct SolveArgs {
     /// Budget: tri-boxes per triangle (boxes, on the rectangle routes).
     #[arg(long, default_value_t = 50_000)]
     max_boxes: usize,
-    /// How the square is solved: as two triangles with --method (the
-    /// paper's conversion), or natively on boxes.
-    #[arg(long, value_enum, default_value = "triangles")]
+    /// How the square is solved: natively on boxes (default), or as two
+    /// triangles with --method (the paper's conversion).
+    #[arg(long, value_enum, default_value = "rect")]
     square_route: SquareRoute,
     /// Wall-clock budget in seconds: past it no further box is processed,
     /// and the answer lists the unexplored regions as leftovers (complete =

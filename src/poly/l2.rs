@@ -32,6 +32,20 @@ pub fn binomial(n: usize, k: usize) -> BigInt {
     acc
 }
 
+/// Pascal's triangle: row `k` holds `C(k, 0..=k)`, for `k ≤ top`.
+pub(crate) fn pascal(top: usize) -> Vec<Vec<BigInt>> {
+    let mut rows: Vec<Vec<BigInt>> = vec![vec![BigInt::one()]];
+    for k in 1..=top {
+        let prev = &rows[k - 1];
+        let mut row = vec![BigInt::one(); k + 1];
+        for i in 1..k {
+            row[i] = &prev[i - 1] + &prev[i];
+        }
+        rows.push(row);
+    }
+    rows
+}
+
 /// The multinomial `n! / (i! j! k!)` with `n = i + j + k`.
 pub fn multinomial(i: usize, j: usize, k: usize) -> BigInt {
     binomial(i + j + k, i) * binomial(j + k, j)

@@ -33,4 +33,5 @@ pub use triangle::{TriBezier, TriReduction};
 pub use univariate::{UniBezier, UniReduction};
 
 pub(crate) use ball::{Reduced, TriBall, TriBallDD};
+pub(crate) use l2::pascal;
 pub(crate) use univariate::{eval_coeffs, split_coeffs};

@@ -256,18 +256,38 @@ impl Polynomial {
     }
 
     /// Exact BB form on the unit square of bidegree (degree in `u`, degree in `v`).
+    ///
+    /// `u^a v^b = Σ_{i ≥ a, j ≥ b} C(i,a)/C(m,a) · C(j,b)/C(n,b) · B_i(u) B_j(v)`,
+    /// summed one direction at a time (`O(mn(m + n))` operations, not
+    /// `O(m²n²)`) in integers over one common denominator, reduced once per
+    /// coefficient at the end.
     pub fn to_square(&self) -> TensorBezier<BigRational> {
+        use num_integer::Integer;
         let (m, n) = self.degrees();
         let (m, n) = (m as usize, n as usize);
-        let mut coeffs = vec![BigRational::zero(); (m + 1) * (n + 1)];
+        let top = m.max(n);
+        let pascal = super::l2::pascal(top);
+        let lcm_row = |k: usize| pascal[k].iter().fold(BigInt::one(), |acc, c| acc.lcm(c));
+        let (cm, cn) = (lcm_row(m), lcm_row(n));
+        let den_l = self.terms.values().fold(BigInt::one(), |acc, c| acc.lcm(c.denom()));
+        // w[a][b] = c_ab · L · (Cm / C(m,a)) · (Cn / C(n,b)), an integer.
+        let mut w = vec![vec![BigInt::zero(); n + 1]; m + 1];
         for ((a, b), c) in &self.terms {
             let (a, b) = (*a as usize, *b as usize);
-            let den = binomial(m, a) * binomial(n, b);
-            for i in a..=m {
-                for j in b..=n {
-                    let num = binomial(i, a) * binomial(j, b);
-                    coeffs[i * (n + 1) + j] += c * BigRational::new(num, den.clone());
-                }
+            let num = c.numer() * (&den_l / c.denom());
+            w[a][b] = num * (&cm / &pascal[m][a]) * (&cn / &pascal[n][b]);
+        }
+        // t[i][b] = Σ_{a ≤ i} w[a][b] C(i,a); s[i][j] = Σ_{b ≤ j} t[i][b] C(j,b).
+        let mut coeffs = Vec::with_capacity((m + 1) * (n + 1));
+        let den = den_l * cm * cn;
+        for i in 0..=m {
+            let t: Vec<BigInt> = (0..=n)
+                .map(|b| (0..=i).fold(BigInt::zero(), |acc, a| acc + &w[a][b] * &pascal[i][a]))
+                .collect();
+            for row in &pascal[..=n] {
+                // row = C(j, ·) for j = 0..=n
+                let s = row.iter().zip(&t).fold(BigInt::zero(), |acc, (c, tb)| acc + tb * c);
+                coeffs.push(BigRational::new(s, den.clone()));
             }
         }
         TensorBezier::on_unit_square(m, n, coeffs).expect("exact coefficients are finite")

@@ -229,6 +229,7 @@ pub(super) fn candidates(
             c: [dist.diff[0].c.clone(), dist.diff[1].c.clone(), dist.diff[2].c.clone()],
             w: dist.w.map(|w| w.c.clone()),
         }),
+        exact: None,
     };
     // Floating point proposes a near point; its enclosed distance bounds the
     // minimum from above, so every region provably farther is pruned from

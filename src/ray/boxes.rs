@@ -106,6 +106,7 @@ pub(super) fn intersect_rect(p: &TensorPatch, ray: &Ray, opts: &RayOptions) -> R
         num: Some(h.clone()),
         den: den.clone(),
         squares: None,
+        exact: None,
     };
     let ropts = RectOptions {
         eps: opts.solve.eps,

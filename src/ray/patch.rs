@@ -75,6 +75,17 @@ pub(crate) trait Bb<S: Scalar>: Clone {
 /// `[p, ∂p/∂u, ∂p/∂v]` of a tensor BB polynomial on `[0, 1]²` in `f64`, on
 /// the stack ([`uni_jet_f64`] row by row, then on the columns).
 fn tensor_jet_f64(c: &[f64], m: usize, n: usize, u: f64, v: f64) -> [f64; 3] {
+    // The bicubic (and lower) with constant sizes: unrolled, the same floats.
+    match (m, n) {
+        (3, 3) => tensor_jet_in(c, 3, 3, u, v),
+        (2, 2) => tensor_jet_in(c, 2, 2, u, v),
+        (1, 1) => tensor_jet_in(c, 1, 1, u, v),
+        _ => tensor_jet_in(c, m, n, u, v),
+    }
+}
+
+#[inline(always)]
+fn tensor_jet_in(c: &[f64], m: usize, n: usize, u: f64, v: f64) -> [f64; 3] {
     let mut vals = [0.0f64; MAX_DEGREE + 1];
     let mut dvs = [0.0f64; MAX_DEGREE + 1];
     let mut row = [0.0f64; MAX_DEGREE + 1];
@@ -90,6 +101,7 @@ fn tensor_jet_f64(c: &[f64], m: usize, n: usize, u: f64, v: f64) -> [f64; 3] {
 /// Value and derivative of a univariate BB polynomial on `[0, 1]` at `t`:
 /// de Casteljau stopped one level early leaves `p₀, p₁`, and then
 /// `p = (1 − t)p₀ + t p₁`, `p' = k (p₁ − p₀)`.
+#[inline(always)]
 fn uni_jet_f64(c: &mut [f64], t: f64) -> (f64, f64) {
     let k = c.len() - 1;
     if k == 0 {

@@ -12,6 +12,13 @@ const MARGIN: f64 = 4e-15;
 /// the margin covers their rounding on `[0, 1]`. Inputs must be finite and
 /// `lo.len() == hi.len() ≥ 1`.
 pub(crate) fn zero_span(lo: &[f64], hi: &[f64]) -> Option<(f64, f64)> {
+    zero_span_inline(lo, hi)
+}
+
+/// [`zero_span`] inlined into its caller, for callers whose `lo.len()` is a
+/// constant there (the box solver's small bidegrees): the loops unroll.
+#[inline(always)]
+pub(crate) fn zero_span_inline(lo: &[f64], hi: &[f64]) -> Option<(f64, f64)> {
     let k = lo.len() - 1;
     if k == 0 {
         return (lo[0] <= 0.0 && hi[0] >= 0.0).then_some((0.0, 1.0));

@@ -340,6 +340,7 @@ fn solve_exact_triangle(
     Ok(finish_exact(
         solve_pieces(vec![piece], &global, Domain::Triangle, opts),
         &sys,
+        opts.deadline,
     ))
 }
 
@@ -359,38 +360,69 @@ fn solve_exact_square(
         None,
     )?;
     if opts.square_route != SquareRoute::Triangles {
-        let ropts = rect::RectOptions {
-            eps: opts.eps,
-            max_boxes: opts.max_boxes,
-            clip: match opts.square_route {
-                SquareRoute::RectFatLine => rect::RectClip::FatLine,
-                SquareRoute::RectHybrid => rect::RectClip::Hybrid,
-                _ => rect::RectClip::Bezier,
-            },
-            deadline: opts.deadline,
-            ..rect::RectOptions::default()
-        };
-        let sol = rect::solve_rect(&ef.map(enclose), &eg.map(enclose), None, &ropts)?.solution;
-        if sol.complete || opts.deadline.is_some_and(|d| std::time::Instant::now() >= d) {
-            return Ok(finish_exact(sol, &sys));
+        let ropts = rect_options(opts);
+        let sol = rect::solve_rect_exact(
+            &ef.map(enclose),
+            &eg.map(enclose),
+            std::sync::Arc::new(sys.clone()),
+            &ropts,
+        )?
+        .solution;
+        let late = || opts.deadline.is_some_and(|d| std::time::Instant::now() >= d);
+        if !sol.complete && !late() {
+            // Out of budget (e.g. two curves running nearly parallel
+            // along a diagonal, which axis-aligned boxes separate only
+            // when they are as thin as the gap): the triangle route's fat
+            // curves and exact restarts handle those.
+            return solve_exact_square_triangles(&ef, &eg, &sys, opts);
         }
-        // Out of budget (e.g. two curves running nearly parallel
-        // along a diagonal, which axis-aligned boxes separate only
-        // when they are as thin as the gap): the triangle route's fat
-        // curves and exact restarts handle those.
+        let sol = finish_exact(sol, &sys, opts.deadline);
+        let stuck = sol
+            .clusters
+            .iter()
+            .any(|c| c.reason == UndecidedReason::MultipleOrClose);
+        if stuck && dm + dn <= TRIANGLES_RETRY_DEGREE && !late() {
+            // Two simple roots closer than rounding separates on boxes (a
+            // line nearly tangent to a conic): the triangles' exact
+            // restarts may separate them. Both answers are certified; the
+            // one with fewer undecided regions is kept.
+            let tri = solve_exact_square_triangles(&ef, &eg, &sys, opts)?;
+            if tri.complete && tri.clusters.len() < sol.clusters.len() {
+                return Ok(tri);
+            }
+        }
+        return Ok(sol);
     }
+    solve_exact_square_triangles(&ef, &eg, &sys, opts)
+}
+
+/// Bidegrees `m + n` up to which a box-route answer with undecided regions
+/// is retried on the two triangles (of degree `m + n`).
+const TRIANGLES_RETRY_DEGREE: usize = 24;
+
+/// The exact square as two triangles of degree `m + n`.
+fn solve_exact_square_triangles(
+    ef: &TensorBezier<BigRational>,
+    eg: &TensorBezier<BigRational>,
+    sys: &settle::ExactSystem,
+    opts: &SolveOptions,
+) -> Result<Solution> {
+    let enclose = |q: &BigRational| Interval::from_rational(q);
     let exact = Some((ef.to_triangles()?, eg.to_triangles()?));
     Ok(finish_exact(
         square_pieces(&ef.map(enclose), &eg.map(enclose), exact, opts)?,
-        &sys,
+        sys,
+        opts.deadline,
     ))
 }
 
 /// Undecided regions at most this wide are retried by exact Krawczyk.
 const EXACT_CERTIFY_BELOW: f64 = 1e-6;
-/// At most this many exact Krawczyk tests per solve (each region that does
-/// not settle at once is bisected, at most three times).
-const EXACT_CERTIFY_MAX: usize = 24;
+/// At most this many exact Krawczyk tests per region (one that does not
+/// settle at once is bisected, at most three times). The total grows with
+/// the number of regions, i.e. with the roots, and the solve's deadline
+/// ends it (regions not tried stay undecided).
+const EXACT_CERTIFY_MAX: usize = 15;
 
 /// Retries small undecided regions with Krawczyk in exact arithmetic
 /// ([`settle::ExactSystem::certify`]), bisecting a region that does not
@@ -402,10 +434,14 @@ const EXACT_CERTIFY_MAX: usize = 24;
 /// retried one by one; the regions left are then joined ([`join_undecided`]).
 /// Then every certified root on the boundary is settled
 /// ([`settle_boundary`]).
-fn finish_exact(mut sol: Solution, sys: &settle::ExactSystem) -> Solution {
+fn finish_exact(mut sol: Solution, sys: &settle::ExactSystem, deadline: Option<std::time::Instant>) -> Solution {
     let mut kept = Vec::with_capacity(sol.clusters.len());
-    let mut budget = EXACT_CERTIFY_MAX;
     for c in std::mem::take(&mut sol.clusters) {
+        if deadline.is_some_and(|d| std::time::Instant::now() >= d) {
+            kept.push(c);
+            continue;
+        }
+        let mut budget = EXACT_CERTIFY_MAX;
         let small = c.bx.u[1] - c.bx.u[0] <= EXACT_CERTIFY_BELOW && c.bx.v[1] - c.bx.v[0] <= EXACT_CERTIFY_BELOW;
         // A (nearly) singular Jacobian at the centre: a multiple root, or
         // roots closer than these tests separate; not worth the exact cost.
@@ -582,7 +618,32 @@ pub(crate) fn solve_square(
     let (m, n) = f.degree();
     let (p, q) = g.degree();
     let (f, g) = (f.elevate(m.max(p), n.max(q))?, g.elevate(m.max(p), n.max(q))?);
+    if opts.square_route != SquareRoute::Triangles && m.max(p) >= 1 && n.max(q) >= 1 {
+        // (An input the box solver rejects goes to the triangles, which
+        // give their own answer or error.)
+        if let Ok(r) = rect::solve_rect(&f, &g, None, &rect_options(opts)) {
+            if r.solution.complete || opts.deadline.is_some_and(|d| std::time::Instant::now() >= d) {
+                return Ok(join_undecided(r.solution));
+            }
+        }
+        // Out of budget: the triangle route, as for exact input.
+    }
     square_pieces(&f, &g, None, opts).map(join_undecided)
+}
+
+/// The box solver's options for a solve's.
+fn rect_options(opts: &SolveOptions) -> rect::RectOptions {
+    rect::RectOptions {
+        eps: opts.eps,
+        max_boxes: opts.max_boxes,
+        clip: match opts.square_route {
+            SquareRoute::RectFatLine => rect::RectClip::FatLine,
+            SquareRoute::RectHybrid => rect::RectClip::Hybrid,
+            _ => rect::RectClip::Bezier,
+        },
+        deadline: opts.deadline,
+        ..rect::RectOptions::default()
+    }
 }
 
 type ExactHalves = ([TriBezier<BigRational>; 2], [TriBezier<BigRational>; 2]);

@@ -26,6 +26,9 @@ type Q = BigRational;
 /// Steps of [`certify`].
 const CERTIFY_STEPS: usize = 4;
 
+/// A certified box at most this wide is not contracted further.
+const TIGHT: f64 = 1e-15;
+
 /// A system `F = (f, g)` enclosed in exact rational interval arithmetic:
 /// the exact counterpart of [`Bivariate`](super::Bivariate) for a pair.
 pub(crate) trait RationalSystem {
@@ -41,9 +44,13 @@ pub(crate) trait RationalSystem {
 /// [`ExactSystem::certify`](crate::solve::settle::ExactSystem::certify).
 pub(crate) fn certify<S: RationalSystem>(sys: &S, bx: Box2) -> Verdict<Box2, ()> {
     let q = |x: f64| Q::from_float(x);
+    // In rationals: a float widening of a box a few ulps wide would round
+    // away (a root exactly on its edge, e.g. a corner of the domain, would
+    // stay on the widened box's edge, where K(X) ⊂ int X cannot hold).
     let widen = |b: [f64; 2]| {
-        let r = (b[1] - b[0]) / 10.0;
-        Some((q(b[0] - r)?, q(b[1] + r)?))
+        let (lo, hi) = (q(b[0])?, q(b[1])?);
+        let r = (&hi - &lo) / Q::from_integer(10.into());
+        Some((&lo - &r, &hi + &r))
     };
     let (Some((u0, u1)), Some((v0, v1))) = (widen(bx.u), widen(bx.v)) else {
         return Verdict::Undecided(());
@@ -59,6 +66,24 @@ pub(crate) fn certify<S: RationalSystem>(sys: &S, bx: Box2) -> Verdict<Box2, ()>
         let inside =
             (0..2).all(|d| cmp(&k[d].lo, &x[d].lo) == Ordering::Greater && cmp(&k[d].hi, &x[d].hi) == Ordering::Less);
         if inside {
+            // The unique root lies in K, and K(X) ∩ X keeps it: a few more
+            // (quadratically converging) steps bring the box down to
+            // rounding, while each at least halves it.
+            let mut k = k;
+            for _ in 0..CERTIFY_STEPS {
+                let w = k[0].width().max(k[1].width());
+                if w.to_f64().is_some_and(|w| w <= TIGHT) {
+                    break;
+                }
+                let Some(next) = krawczyk(sys, &k) else { break };
+                let (Some(a), Some(b)) = (next[0].meet(&k[0]), next[1].meet(&k[1])) else {
+                    break;
+                };
+                if a.width().max(b.width()) * Q::from_integer(2.into()) > w {
+                    break;
+                }
+                k = [a, b];
+            }
             let out = |r: &RI| {
                 let (lo, hi) = (r.lo.to_f64().unwrap_or(f64::NAN), r.hi.to_f64().unwrap_or(f64::NAN));
                 // Outward by an ulp: `to_f64` rounds to nearest.

@@ -77,4 +77,4 @@ mod spans;
 pub(crate) use net::eval_box;
 #[cfg_attr(not(feature = "internals"), allow(unused_imports))] // Objective, RectSolution: for tests.
 pub use runner::{solve_rect, Objective, Query, RectClip, RectOptions, RectSolution};
-pub(crate) use runner::{solve_rect_iv, RectProblem, Squares};
+pub(crate) use runner::{solve_rect_exact, solve_rect_iv, RectProblem, Squares};

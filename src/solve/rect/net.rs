@@ -3,13 +3,41 @@
 //! directly (signs, derivative hulls, enclosures over sub-boxes).
 
 use crate::scalar::interval;
-use crate::scalar::iv::Iv;
+use crate::scalar::iv::{down, up, Iv};
 use crate::solve::krawczyk::IBox;
 
 /// Scratch arrays on the stack hold this many coefficients per line; higher
-/// degrees skip the hull clip and the local Krawczyk test (they still split,
-/// and leaves are certified globally). The ray front end allows degree ≤ 20.
+/// degrees use heap buffers for the same steps.
 pub(super) const STACK: usize = 24;
+
+/// Coefficients per polynomial up to which scratch copies live in fixed
+/// arrays (bicubic: 16).
+pub(super) const SMALL_LEN: usize = 16;
+
+/// Calls `$body` with `m` and `n` as constants for the
+/// small bidegrees (the bicubic of a typical patch is `(3, 3)`), so that the
+/// inlined kernel's loops are unrolled and free of bounds checks; the same
+/// operations in the same order as the general call, so the same floats.
+macro_rules! with_small_degrees {
+    ($sh:expr, |$m:ident, $n:ident| $body:expr) => {
+        match ($sh.m, $sh.n) {
+            (1, 1) => {
+                let ($m, $n) = (1, 1);
+                $body
+            }
+            (2, 2) => {
+                let ($m, $n) = (2, 2);
+                $body
+            }
+            (3, 3) => {
+                let ($m, $n) = (3, 3);
+                $body
+            }
+            ($m, $n) => $body,
+        }
+    };
+}
+pub(super) use with_small_degrees;
 
 /// The layout of a box's coefficients: `polys` polynomials of bidegree
 /// `(m, n)`, `len` coefficients each, row-major, one after the other.
@@ -67,6 +95,10 @@ pub(super) struct Node {
     /// this box ([`Query::Nearest`](super::Query::Nearest) orders children
     /// by it and then prunes with it, so it is computed once), or `None`.
     pub(super) key: Option<f64>,
+    /// The box's larger relative width when exact Krawczyk last failed on it
+    /// or an ancestor (`∞` if never tried): tried again only on boxes a
+    /// quarter as wide.
+    pub(super) exact_w: f64,
 }
 
 impl Node {
@@ -82,34 +114,82 @@ impl Node {
 /// Hulls of `∂p/∂s` and `∂p/∂t` over the box, from the derivative's
 /// Bernstein coefficients.
 pub(super) fn jacobian_row(p: &[Iv], sh: Shape) -> [Iv; 2] {
-    let mut ds: Option<Iv> = None;
-    let mut dt: Option<Iv> = None;
-    for i in 0..=sh.m {
-        for j in 0..=sh.n {
-            let c = p[at(sh, i, j)];
-            if i < sh.m {
-                let x = p[at(sh, i + 1, j)].sub(c);
-                ds = Some(ds.map_or(x, |h| h.hull(x)));
+    with_small_degrees!(sh, |m, n| jacobian_row_in(p, m, n))
+}
+
+#[inline(always)]
+fn jacobian_row_in(p: &[Iv], m: usize, n: usize) -> [Iv; 2] {
+    // The hull of the differences `c' − c` (each `[c'.lo − c.hi, c'.hi − c.lo]`
+    // moved outward by `down`/`up`, as `Iv::sub` does) taken before the
+    // outward move: `down` and `up` are nondecreasing in `r` (for `r < 0`
+    // both `r` and `−e(r)`, `e = fl(|r|·2⁻⁵¹ + ABS)`, grow with `r`; for
+    // `r ≥ 0` two floats `r₁ < r₂` are at least an ulp of `r₁` apart, more
+    // than `e` can grow between them, ~2⁻⁵¹ of that gap plus an ulp of `e`;
+    // and rounding is monotone), so `min down(r_k) = down(min r_k)` and
+    // `max up(r_k) = up(max r_k)`: the same floats as the hull of the
+    // `Iv::sub`s, with one move per hull instead of two per difference. A
+    // NaN difference makes the hull NaN, as `Iv::hull` does.
+    let w = n + 1;
+    let mut ds = [f64::INFINITY, f64::NEG_INFINITY];
+    let mut dt = [f64::INFINITY, f64::NEG_INFINITY];
+    let mut nan = [false; 2];
+    let put = |h: &mut [f64; 2], nan: &mut bool, a: Iv, c: Iv| {
+        let (lo, hi) = (a.lo - c.hi, a.hi - c.lo);
+        *nan |= lo.is_nan() || hi.is_nan();
+        h[0] = h[0].min(lo);
+        h[1] = h[1].max(hi);
+    };
+    for i in 0..=m {
+        for j in 0..=n {
+            let c = p[i * w + j];
+            if i < m {
+                put(&mut ds, &mut nan[0], p[(i + 1) * w + j], c);
             }
-            if j < sh.n {
-                let x = p[at(sh, i, j + 1)].sub(c);
-                dt = Some(dt.map_or(x, |h| h.hull(x)));
+            if j < n {
+                put(&mut dt, &mut nan[1], p[i * w + j + 1], c);
             }
         }
     }
-    let z = Iv::point(0.0);
-    [ds.unwrap_or(z).scale(sh.m as f64), dt.unwrap_or(z).scale(sh.n as f64)]
+    let hull = |h: [f64; 2], nan: bool, k: usize| {
+        if k == 0 {
+            Iv::point(0.0)
+        } else if nan {
+            Iv::new(f64::NAN, f64::NAN)
+        } else {
+            Iv::new(down(h[0]), up(h[1]))
+        }
+    };
+    [hull(ds, nan[0], m).scale(m as f64), hull(dt, nan[1], n).scale(n as f64)]
 }
 
 /// An enclosure of the polynomial with row-major coefficients `p` of
 /// bidegree `(m, n)` over the local box `s × t` (any floats, extrapolation
 /// included), by de Casteljau with [`Iv::lerp_range`].
 pub(crate) fn eval_box(p: &[Iv], m: usize, n: usize, s: [f64; 2], t: [f64; 2]) -> Iv {
-    if m >= STACK || n >= STACK {
-        return Iv::new(f64::NEG_INFINITY, f64::INFINITY);
+    with_small_degrees!(Shape::pair(m, n), |m, n| eval_box_in(p, m, n, s, t))
+}
+
+#[inline(always)]
+fn eval_box_in(p: &[Iv], m: usize, n: usize, s: [f64; 2], t: [f64; 2]) -> Iv {
+    if m < STACK && n < STACK {
+        let mut col = [Iv::point(0.0); STACK];
+        let mut row = [Iv::point(0.0); STACK];
+        eval_box_with(p, m, n, s, t, &mut col, &mut row)
+    } else {
+        eval_box_with(
+            p,
+            m,
+            n,
+            s,
+            t,
+            &mut vec![Iv::point(0.0); m + 1],
+            &mut vec![Iv::point(0.0); n + 1],
+        )
     }
-    let mut col = [Iv::point(0.0); STACK];
-    let mut row = [Iv::point(0.0); STACK];
+}
+
+#[inline(always)]
+fn eval_box_with(p: &[Iv], m: usize, n: usize, s: [f64; 2], t: [f64; 2], col: &mut [Iv], row: &mut [Iv]) -> Iv {
     for (i, line) in p.chunks(n + 1).enumerate() {
         row[..=n].copy_from_slice(line);
         for k in 1..=n {

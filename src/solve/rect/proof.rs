@@ -3,52 +3,46 @@
 //! `krawczyk::local`, this module hands it the box's system), and the test
 //! for a box whose separating sign is lost to rounding.
 
-use super::net::{at, jacobian_row, Shape, STACK};
+use super::net::{jacobian_row, with_small_degrees, Shape, SMALL_LEN, STACK};
 use crate::scalar::iv::Iv;
 use crate::solve::krawczyk::local::{self, LocalSystem};
 use crate::solve::krawczyk::Verdict;
 use crate::solve::linalg::smallest_singular_left;
 
 /// The polynomial's value at the local point `(s, t)` (floats in `[0, 1]`).
-fn eval_local(p: &[Iv], sh: Shape, s: f64, t: f64) -> Iv {
-    let mut col = [Iv::point(0.0); STACK];
-    let mut row = [Iv::point(0.0); STACK];
-    for i in 0..=sh.m {
-        row[..=sh.n].copy_from_slice(&p[at(sh, i, 0)..=at(sh, i, sh.n)]);
-        for r in 1..=sh.n {
-            for j in 0..=sh.n - r {
+#[inline(always)]
+fn eval_local_in(p: &[Iv], m: usize, n: usize, s: f64, t: f64) -> Iv {
+    if m < STACK && n < STACK {
+        let mut col = [Iv::point(0.0); STACK];
+        let mut row = [Iv::point(0.0); STACK];
+        eval_local_with(p, m, n, s, t, &mut col, &mut row)
+    } else {
+        eval_local_with(
+            p,
+            m,
+            n,
+            s,
+            t,
+            &mut vec![Iv::point(0.0); m + 1],
+            &mut vec![Iv::point(0.0); n + 1],
+        )
+    }
+}
+
+#[inline(always)]
+fn eval_local_with(p: &[Iv], m: usize, n: usize, s: f64, t: f64, col: &mut [Iv], row: &mut [Iv]) -> Iv {
+    for i in 0..=m {
+        row[..=n].copy_from_slice(&p[i * (n + 1)..=i * (n + 1) + n]);
+        for r in 1..=n {
+            for j in 0..=n - r {
                 row[j] = Iv::lerp(row[j], row[j + 1], t);
             }
         }
         col[i] = row[0];
     }
-    for r in 1..=sh.m {
-        for i in 0..=sh.m - r {
+    for r in 1..=m {
+        for i in 0..=m - r {
             col[i] = Iv::lerp(col[i], col[i + 1], s);
-        }
-    }
-    col[0]
-}
-
-/// The value at the local point `(s, t)` of the polynomial with the
-/// midpoints of `p` as coefficients, in `f64` (a proposal, never a proof).
-fn eval_mid(p: &[Iv], sh: Shape, s: f64, t: f64) -> f64 {
-    let mut col = [0.0f64; STACK];
-    let mut row = [0.0f64; STACK];
-    for i in 0..=sh.m {
-        for (r, c) in row.iter_mut().zip(&p[at(sh, i, 0)..=at(sh, i, sh.n)]) {
-            *r = c.mid();
-        }
-        for r in 1..=sh.n {
-            for j in 0..=sh.n - r {
-                row[j] += t * (row[j + 1] - row[j]);
-            }
-        }
-        col[i] = row[0];
-    }
-    for r in 1..=sh.m {
-        for i in 0..=sh.m - r {
-            col[i] += s * (col[i + 1] - col[i]);
         }
     }
     col[0]
@@ -57,29 +51,96 @@ fn eval_mid(p: &[Iv], sh: Shape, s: f64, t: f64) -> f64 {
 /// Krawczyk on `X = [0, 1]²` in the box's local coordinates (`rect` docs,
 /// step 3), then contraction ([`local::certify_unit_box`]).
 pub(super) fn local_krawczyk(c: &[Iv], sh: Shape) -> Verdict<[Iv; 2], ()> {
-    if sh.m >= STACK || sh.n >= STACK {
-        return Verdict::Undecided(());
-    }
     let (f, g) = (&c[..sh.len], &c[sh.len..2 * sh.len]);
     let [a, b] = jacobian_row(f, sh);
     let [cc, d] = jacobian_row(g, sh);
-    local::certify_unit_box(&BoxSystem { f, g, sh }, [a, b, cc, d])
+    // The midpoint system, once per box (Newton in `contract` evaluates it
+    // up to eight times).
+    let mut small = [0.0f64; 2 * SMALL_LEN];
+    let large: Vec<f64>;
+    let mid: &[f64] = if sh.len <= SMALL_LEN {
+        for (x, c) in small.iter_mut().zip(&c[..2 * sh.len]) {
+            *x = c.mid();
+        }
+        &small[..2 * sh.len]
+    } else {
+        large = c[..2 * sh.len].iter().map(|x| x.mid()).collect();
+        &large
+    };
+    local::certify_unit_box(&BoxSystem { f, g, mid, sh }, [a, b, cc, d])
 }
 
 /// The system on a box, as [`local`] evaluates it (degrees below [`STACK`]).
 struct BoxSystem<'a> {
     f: &'a [Iv],
     g: &'a [Iv],
+    /// The midpoints of `f`'s coefficients, then of `g`'s.
+    mid: &'a [f64],
     sh: Shape,
+}
+
+/// The value and both partial derivatives at the local point `(s, t)` of
+/// the polynomial with coefficients `mid`, in `f64` (a proposal, never a
+/// proof): de Casteljau stopped one level short in each direction gives the
+/// two points whose difference is the derivative (times the degree).
+#[inline(always)]
+fn jet_mid_in(mid: &[f64], m: usize, n: usize, s: f64, t: f64) -> [f64; 3] {
+    if m < STACK && n < STACK {
+        let mut col = [0.0f64; STACK];
+        let mut dcol = [0.0f64; STACK];
+        let mut row = [0.0f64; STACK];
+        jet_mid_with(mid, (m, n), (s, t), [&mut col, &mut dcol, &mut row])
+    } else {
+        let (mut col, mut dcol, mut row) = (vec![0.0; m + 1], vec![0.0; m + 1], vec![0.0; n + 1]);
+        jet_mid_with(mid, (m, n), (s, t), [&mut col, &mut dcol, &mut row])
+    }
+}
+
+/// [`jet_mid_in`] with scratch `[col, dcol, row]` (at least `m + 1`,
+/// `m + 1`, `n + 1` long).
+#[inline(always)]
+fn jet_mid_with(
+    mid: &[f64],
+    (m, n): (usize, usize),
+    (s, t): (f64, f64),
+    [col, dcol, row]: [&mut [f64]; 3],
+) -> [f64; 3] {
+    for i in 0..=m {
+        row[..=n].copy_from_slice(&mid[i * (n + 1)..=i * (n + 1) + n]);
+        for r in 1..n {
+            for j in 0..=n - r {
+                row[j] += t * (row[j + 1] - row[j]);
+            }
+        }
+        col[i] = row[0] + t * (row[1] - row[0]);
+        dcol[i] = n as f64 * (row[1] - row[0]);
+    }
+    for r in 1..m {
+        for i in 0..=m - r {
+            col[i] += s * (col[i + 1] - col[i]);
+        }
+    }
+    for r in 1..=m {
+        for i in 0..=m - r {
+            dcol[i] += s * (dcol[i + 1] - dcol[i]);
+        }
+    }
+    [col[0] + s * (col[1] - col[0]), m as f64 * (col[1] - col[0]), dcol[0]]
 }
 
 impl LocalSystem for BoxSystem<'_> {
     fn value(&self, s: f64, t: f64) -> [Iv; 2] {
-        [eval_local(self.f, self.sh, s, t), eval_local(self.g, self.sh, s, t)]
+        with_small_degrees!(self.sh, |m, n| [
+            eval_local_in(self.f, m, n, s, t),
+            eval_local_in(self.g, m, n, s, t)
+        ])
     }
 
-    fn value_mid(&self, s: f64, t: f64) -> [f64; 2] {
-        [eval_mid(self.f, self.sh, s, t), eval_mid(self.g, self.sh, s, t)]
+    fn jet_mid(&self, s: f64, t: f64) -> ([f64; 2], [f64; 4]) {
+        let (f, g) = self.mid.split_at(self.sh.len);
+        let [[fv, fs, ft], [gv, gs, gt]] =
+            with_small_degrees!(self.sh, |m, n| [jet_mid_in(f, m, n, s, t), jet_mid_in(g, m, n, s, t)]);
+        ([fv, gv], [fs, ft, gs, gt])
     }
 }
 

@@ -14,8 +14,10 @@ use crate::scalar::iv::Iv;
 use crate::solve::driver::VANISHING;
 use crate::solve::krawczyk::{IBox, System, Verdict};
 use crate::solve::regions::{merge_roots, overlaps, undecided_clusters, Found};
+use crate::solve::settle::ExactSystem;
 use crate::solve::solution::{Box2, Cluster, Leftover, Root, Solution, Stats, UndecidedReason};
 use inari::Interval;
+use std::sync::Arc;
 
 /// What the caller wants from the roots, ordered by an objective `k` (for
 /// rays: `t`).
@@ -144,6 +146,10 @@ const REPORT_BELOW: f64 = 1e-12;
 /// the leaf test (see [`Runner::step`]).
 const SINGULAR_FLOOR: f64 = 1e-9;
 
+/// Stalled boxes narrower than this (relative) are tried by exact Krawczyk
+/// when the system is exact ([`RectProblem::exact`]).
+const EXACT_BELOW: f64 = 1e-4;
+
 /// The relative width of the strip cut along an edge where both equations
 /// may vanish ([`Runner::cut_vanishing_edges`]): `2⁻³⁰`, so that `1 − EDGE_STRIP`
 /// is exact.
@@ -221,6 +227,48 @@ pub fn solve_rect(
         num: objective.map(|o| lift(o.num)).transpose()?,
         den: objective.and_then(|o| o.den).map(lift).transpose()?,
         squares: None,
+        exact: None,
+    };
+    solve_rect_iv(problem, opts)
+}
+
+/// [`solve_rect`] (no objective) for a system also known exactly: `exact`
+/// is `f = g = 0` in rationals on the same (unit) square.
+pub(crate) fn solve_rect_exact(
+    f: &TensorBezier<Interval>,
+    g: &TensorBezier<Interval>,
+    exact: Arc<ExactSystem>,
+    opts: &RectOptions,
+) -> Result<RectSolution> {
+    let (du, dv) = f.domain();
+    let unit = |d: &[Interval; 2]| d[0] == interval(0.0, 0.0) && d[1] == interval(1.0, 1.0);
+    if !(unit(du) && unit(dv)) {
+        return Err(Error::Shape("an exact system is solved on the unit square".into()));
+    }
+    // Bidegree at least (1, 1) (the box solver's shape); the exact system
+    // is used only through boxes in domain coordinates.
+    let (m, n) = f.degree();
+    let (p, q) = g.degree();
+    let (m, n) = (m.max(p).max(1), n.max(q).max(1));
+    let iv = |x: &Interval| Iv::new(x.inf(), x.sup());
+    let lift = |t: &TensorBezier<Interval>| -> Result<Vec<Iv>> {
+        let e = if t.degree() == (m, n) {
+            t.clone()
+        } else {
+            t.elevate(m, n)?
+        };
+        Ok(e.coeffs().iter().map(iv).collect())
+    };
+    let problem = RectProblem {
+        m,
+        n,
+        domain: [[Iv::point(0.0), Iv::point(1.0)]; 2],
+        f: lift(f)?,
+        g: lift(g)?,
+        num: None,
+        den: None,
+        squares: None,
+        exact: Some(exact),
     };
     solve_rect_iv(problem, opts)
 }
@@ -243,6 +291,11 @@ pub(crate) struct RectProblem {
     /// where the expanded `num/den` would cancel); `num`/`den` must still be
     /// the same objective.
     pub(crate) squares: Option<Squares>,
+    /// The same system in exact rational arithmetic, on the same domain, if
+    /// the input is exact: boxes that rounding stalls are then tried by
+    /// exact Krawczyk ([`ExactSystem::certify`]) instead of being split
+    /// down to the rounding floor.
+    pub(crate) exact: Option<Arc<ExactSystem>>,
 }
 
 /// See [`RectProblem::squares`].
@@ -368,6 +421,7 @@ pub(crate) fn solve_rect_iv(p: RectProblem, opts: &RectOptions) -> Result<RectSo
     };
     let mut first = Node {
         key: None,
+        exact_w: f64::INFINITY,
         c: buf,
         bx: domain,
         id: run.push_trace(u32::MAX, domain.map(|[lo, hi]| [lo.lo, hi.hi])),
@@ -481,34 +535,60 @@ impl Runner {
         let w = self.rel_width(&node);
         if w[0].max(w[1]) <= KRAWCZYK_BELOW {
             self.stats.krawczyk_calls += 1;
-            match local_krawczyk(&node.c, sh) {
+            let kv = local_krawczyk(&node.c, sh);
+            match kv {
                 Verdict::Unique(k) => {
-                    let bx = [0, 1].map(|a| {
-                        let [lo, hi] = node.bx[a];
-                        let x = Iv::lerp_range(lo, hi, k[a].lo, k[a].hi);
-                        interval(x.lo, x.hi)
-                    });
-                    let narrow = (0..2).all(|a| bx[a].wid() <= self.opts.eps * self.scale[a]);
-                    if narrow || k[0].wid().max(k[1].wid()) <= REPORT_BELOW {
-                        self.add_root(bx, node.id);
-                        return Step::Done;
-                    }
-                    // The only root of the box lies in K ⊂ int box: go on
+                    // The box holds exactly one root, in K ⊂ int box. Go on
                     // with K widened by half its width on each side (so the
                     // root stays inside, away from the new edges), where J
-                    // is tighter — if that at least halves the box; a wide K
-                    // (J still loose) is left to the clips below instead.
-                    let spans = k.map(|c| {
-                        let r = 0.5 * (c.hi - c.lo);
-                        ((c.lo - r).max(0.0), (c.hi + r).min(1.0))
-                    });
-                    if spans.iter().map(|s| s.1 - s.0).product::<f64>() <= 0.5 {
+                    // is tighter, while that at least halves the box and the
+                    // test still succeeds there; when it no longer does
+                    // (rounding of the coefficients catches up with |F'|·w
+                    // on an ill-conditioned system), the last proven K is
+                    // the root's box. A wide K (J still loose) is left to
+                    // the clips below instead.
+                    let mut k = k;
+                    loop {
+                        let bx = [0, 1].map(|a| {
+                            let [lo, hi] = node.bx[a];
+                            let x = Iv::lerp_range(lo, hi, k[a].lo, k[a].hi);
+                            interval(x.lo, x.hi)
+                        });
+                        let narrow = (0..2).all(|a| bx[a].wid() <= self.opts.eps * self.scale[a]);
+                        if narrow || k[0].wid().max(k[1].wid()) <= REPORT_BELOW {
+                            self.add_root(bx, node.id);
+                            return Step::Done;
+                        }
+                        let mut spans = k.map(|c| {
+                            let r = 0.5 * (c.hi - c.lo);
+                            ((c.lo - r).max(0.0), (c.hi + r).min(1.0))
+                        });
+                        // Not thinner than `MIN_ASPECT` of the other side: a
+                        // needle box (one equation clips its variable to
+                        // rounding while the other lags) ruins the next tests.
+                        keep_aspect(&mut spans, self.rel_width(&node));
+                        if spans.iter().map(|s| s.1 - s.0).product::<f64>() > 0.5 {
+                            break;
+                        }
+                        let mut child = node.clone();
                         for (d, &(a, b)) in spans.iter().enumerate() {
-                            clip(&mut node, sh, d, a, b);
+                            clip(&mut child, sh, d, a, b);
                         }
                         self.stats.clips += 1;
-                        node.id = self.push_trace(node.id, node.outer());
-                        return Step::Continue(node);
+                        self.stats.krawczyk_calls += 1;
+                        match local_krawczyk(&child.c, sh) {
+                            Verdict::Unique(next) => {
+                                child.id = self.push_trace(node.id, child.outer());
+                                node = child;
+                                k = next;
+                            }
+                            // The child holds the root (it holds K): "none"
+                            // cannot be proven, and undecided keeps `bx`.
+                            _ => {
+                                self.add_root(bx, node.id);
+                                return Step::Done;
+                            }
+                        }
                     }
                 }
                 Verdict::NoRoot => {
@@ -562,13 +642,26 @@ impl Runner {
                 self.stats.clip_exclusions += 1;
                 return Step::Done;
             }
-            Some(spans) => {
+            Some(mut spans) => {
+                // The same margin as above: a root the preconditioned hulls
+                // close in on must not end up within rounding of an edge.
+                for span in spans.iter_mut() {
+                    let r = 0.25 * (span.1 - span.0);
+                    *span = ((span.0 - r).max(0.0), (span.1 + r).min(1.0));
+                }
+                keep_aspect(&mut spans, self.rel_width(&node));
                 if area * self.clip_to(&mut node, &spans) <= 0.5 {
                     return Step::Continue(node);
                 }
             }
         }
         let w = self.rel_width(&node);
+        if w[0].max(w[1]) < EXACT_BELOW && 4.0 * w[0].max(w[1]) <= node.exact_w {
+            if let Some(done) = self.try_exact(&node) {
+                return done;
+            }
+            node.exact_w = w[0].max(w[1]);
+        }
         // A stalled box below the floor is a leaf: near a multiple root the
         // region where the coefficients' rounding hides the sign is
         // ~√(rounding) wide, and splitting it down to `eps` would cost
@@ -703,12 +796,59 @@ impl Runner {
         }
     }
 
+    /// A stalled box tried by exact Krawczyk (exact input only):
+    /// `Some(Done)` if that settles it — a unique root of a box around it
+    /// lies inside the node (recorded) or outside it, or there is none —
+    /// and `None` otherwise (also without an exact system).
+    ///
+    /// Exact Krawczyk proves `K ⊂ int X` on the node's outer box widened by
+    /// a tenth ([`ExactSystem::certify`]): that box holds exactly one root,
+    /// in `K`. Inside the node's inner box, the root is the node's; disjoint
+    /// from its outer box, the node holds none; straddling an edge, it is
+    /// left to the usual steps (a neighbour may claim it).
+    fn try_exact(&mut self, node: &Node) -> Option<Step> {
+        let sys = self.problem.exact.clone()?;
+        self.stats.krawczyk_calls += 1;
+        let o = node.outer();
+        match sys.certify(Box2 { u: o[0], v: o[1] }) {
+            Verdict::Unique(k) => {
+                let kb = [k.u, k.v];
+                let inside = (0..2).all(|a| kb[a][0] > node.bx[a][0].hi && kb[a][1] < node.bx[a][1].lo);
+                let outside = (0..2).any(|a| kb[a][1] < o[a][0] || kb[a][0] > o[a][1]);
+                if inside {
+                    self.add_root(k.ibox(), node.id);
+                    Some(Step::Done)
+                } else if outside {
+                    self.stats.krawczyk_exclusions += 1;
+                    Some(Step::Done)
+                } else {
+                    None
+                }
+            }
+            Verdict::NoRoot => {
+                self.stats.krawczyk_exclusions += 1;
+                Some(Step::Done)
+            }
+            Verdict::Undecided(()) => None,
+        }
+    }
+
     /// A box below `eps` that local Krawczyk did not settle.
     fn leaf(&mut self, node: &Node) {
         self.stats.leaves += 1;
         self.stats.krawczyk_calls += 1;
         let x = node.ibox();
-        match self.system().certify(x) {
+        // Exact input: exact Krawczyk sees through the rounding that left
+        // this leaf (the inari test on the same coefficients would not).
+        let verdict = match self.problem.exact.clone() {
+            Some(sys) => match sys.certify(Box2::of(x)) {
+                Verdict::Unique(k) => Verdict::Unique(k.ibox()),
+                Verdict::NoRoot => Verdict::NoRoot,
+                Verdict::Undecided(()) => Verdict::Undecided(x),
+            },
+            None => self.system().certify(x),
+        };
+        match verdict {
             Verdict::Unique(k) => {
                 if k[0].disjoint(x[0]) || k[1].disjoint(x[1]) {
                     self.stats.krawczyk_exclusions += 1;

@@ -3,10 +3,11 @@
 //! preconditioned combinations for stalled boxes), the widening that keeps
 //! roots off new edges, and the exact sub-boxes they become (clip, split).
 
-use super::net::{at, jacobian_row, one_signed, Node, Shape, STACK};
+use super::net::{at, jacobian_row, one_signed, with_small_degrees, Node, Shape, SMALL_LEN, STACK};
 use crate::scalar::iv::Iv;
 use crate::solve::envelope;
 use crate::solve::linalg::{inverse2, smallest_singular_left};
+use smallvec::{smallvec, SmallVec};
 
 /// The smallest ratio of a clipped box's sides ([`keep_aspect`]).
 const MIN_ASPECT: f64 = 1e-3;
@@ -17,6 +18,19 @@ const SPLIT: f64 = 63.0 / 128.0;
 /// Bézier clipping of the box in both directions: the intersection of the
 /// spans of `f` and `g` (`rect` docs, step 4); `None` if it is empty.
 pub(super) fn hull_spans(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
+    with_small_degrees!(sh, |m, n| hull_spans_in(
+        c,
+        Shape {
+            m,
+            n,
+            len: (m + 1) * (n + 1),
+            ..sh
+        }
+    ))
+}
+
+#[inline(always)]
+fn hull_spans_in(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
     let mut spans = [(0.0f64, 1.0f64); 2];
     for (d, span) in spans.iter_mut().enumerate() {
         for p in 0..2 {
@@ -33,13 +47,12 @@ pub(super) fn hull_spans(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
 /// The span of `[0, 1]` in direction `d` (0: `s`, index `i`; 1: `t`, index
 /// `j`) where the convex hull of the coefficient ranges meets zero (module
 /// docs, step 4); `None` if it provably does not.
+#[inline(always)]
 fn zero_span(p: &[Iv], sh: Shape, d: usize) -> Option<(f64, f64)> {
     let (k, other) = if d == 0 { (sh.m, sh.n) } else { (sh.n, sh.m) };
-    let mut lo = [0.0f64; STACK];
-    let mut hi = [0.0f64; STACK];
-    if k >= STACK {
-        return Some((0.0, 1.0));
-    }
+    // On the stack up to degree STACK − 1, on the heap above.
+    let mut lo: SmallVec<[f64; STACK]> = smallvec![0.0; k + 1];
+    let mut hi: SmallVec<[f64; STACK]> = smallvec![0.0; k + 1];
     for a in 0..=k {
         let (mut l, mut h) = (f64::INFINITY, f64::NEG_INFINITY);
         for b in 0..=other {
@@ -56,7 +69,7 @@ fn zero_span(p: &[Iv], sh: Shape, d: usize) -> Option<(f64, f64)> {
         lo[a] = l;
         hi[a] = h;
     }
-    envelope::zero_span(&lo[..=k], &hi[..=k])
+    envelope::zero_span_inline(&lo[..=k], &hi[..=k])
 }
 
 /// Spans from equations that are combinations of `f` and `g` (every root of
@@ -68,6 +81,19 @@ fn zero_span(p: &[Iv], sh: Shape, d: usize) -> Option<(f64, f64)> {
 /// axis-aligned hulls of `f` and `g` would need boxes as thin as the gap.
 /// `None` when some combination proves there is no root.
 pub(super) fn preconditioned_spans(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
+    with_small_degrees!(sh, |m, n| preconditioned_spans_in(
+        c,
+        Shape {
+            m,
+            n,
+            len: (m + 1) * (n + 1),
+            ..sh
+        }
+    ))
+}
+
+#[inline(always)]
+fn preconditioned_spans_in(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
     let (f, g) = (&c[..sh.len], &c[sh.len..2 * sh.len]);
     let [a, b] = jacobian_row(f, sh);
     let [cc, d] = jacobian_row(g, sh);
@@ -84,17 +110,24 @@ pub(super) fn preconditioned_spans(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2
         combos.push(v);
     }
     let mut spans = [(0.0f64, 1.0f64); 2];
-    let mut h = vec![Iv::point(0.0); sh.len];
+    let mut small = [Iv::point(0.0); SMALL_LEN];
+    let mut large: Vec<Iv>;
+    let h: &mut [Iv] = if sh.len <= SMALL_LEN {
+        &mut small[..sh.len]
+    } else {
+        large = vec![Iv::point(0.0); sh.len];
+        &mut large
+    };
     for w in combos {
         let (wa, wb) = (Iv::point(w[0]), Iv::point(w[1]));
         for (k, x) in h.iter_mut().enumerate() {
             *x = wa.mul(f[k]).add(wb.mul(g[k]));
         }
-        if one_signed(&h) {
+        if one_signed(h) {
             return None;
         }
         for (dir, span) in spans.iter_mut().enumerate() {
-            let (lo, hi) = zero_span(&h, sh, dir)?;
+            let (lo, hi) = zero_span(h, sh, dir)?;
             *span = (span.0.max(lo), span.1.min(hi));
             if span.0 > span.1 {
                 return None;
@@ -169,6 +202,22 @@ pub(super) fn split(node: &Node, sh: Shape, d: usize) -> (Node, Node) {
 /// row_{i+1})`), a contiguous loop the compiler vectorizes; in `t` each row
 /// is one contiguous line.
 fn subdivide_all(c: &mut [Iv], sh: Shape, d: usize, t: f64, right: bool) {
+    with_small_degrees!(sh, |m, n| subdivide_all_in(
+        c,
+        Shape {
+            m,
+            n,
+            len: (m + 1) * (n + 1),
+            ..sh
+        },
+        d,
+        t,
+        right
+    ))
+}
+
+#[inline(always)]
+fn subdivide_all_in(c: &mut [Iv], sh: Shape, d: usize, t: f64, right: bool) {
     let w = sh.n + 1;
     for block in c.chunks_exact_mut(sh.len).take(sh.polys) {
         if d == 0 {

@@ -35,13 +35,18 @@
 //! Used by [`super::solve`] for exact input, and by the ray front end, whose
 //! reduction it repeats in rationals with exact plane normals.
 
+mod power;
+
 use super::degenerate::gcd;
 use super::krawczyk::exact::{self, RationalSystem};
-use super::krawczyk::Verdict;
+use super::krawczyk::{Bivariate, Verdict};
 use super::solution::Box2;
 use crate::error::{Error, Result};
+use crate::poly::split_coeffs;
 use crate::poly::{tri_index, tri_len, Direction, TensorBezier, TriBezier};
 use crate::scalar::rational_interval::RI;
+use crate::scalar::rational_to_interval;
+use inari::{interval, Interval};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
@@ -135,6 +140,106 @@ pub struct ExactSystem {
     /// `∂f_k/∂u`, `∂f_k/∂v` of the scaled system (shapes one degree lower in
     /// that variable), formed on first use.
     df: std::sync::OnceLock<[[Poly; 2]; 2]>,
+    /// `∂²f_k/∂x_d∂x_e` (`[k][d][e]`) of the scaled system, formed on first
+    /// use: the slopes of the Jacobian's centred form.
+    d2f: std::sync::OnceLock<[[[Poly; 2]; 2]; 2]>,
+    /// The first and second derivatives enclosed in `f64` intervals
+    /// (coefficients rounded outward), formed on first use.
+    float: std::sync::OnceLock<FloatDerivs>,
+    /// `f` and `g` of the scaled system in power form, formed on first use
+    /// (exact values at points; `None` if the conversion failed).
+    power: std::sync::OnceLock<Option<[power::PowerForm; 2]>>,
+}
+
+/// `[[f_u, f_v], [g_u, g_v]]` with interval coefficients that enclose the
+/// exact ones.
+#[derive(Clone, Debug)]
+struct FloatDerivs {
+    d1: [[FPoly; 2]; 2],
+}
+
+/// A [`Poly`] with `f64` interval coefficients enclosing its own.
+#[derive(Clone, Debug)]
+enum FPoly {
+    Triangle(TriBezier<Interval>),
+    Tensor(Box<TensorBezier<Interval>>),
+}
+
+impl FPoly {
+    fn of(p: &Poly) -> Self {
+        match p {
+            Poly::Triangle(t) => FPoly::Triangle(t.map(rational_to_interval)),
+            Poly::Tensor(t) => FPoly::Tensor(Box::new(t.map(rational_to_interval))),
+        }
+    }
+
+    /// An enclosure of the range over `u × v` (inari, outward rounding).
+    fn over(&self, u: Interval, v: Interval) -> Interval {
+        match self {
+            FPoly::Triangle(t) => t.value(u, v),
+            FPoly::Tensor(t) => t.value(u, v),
+        }
+    }
+
+    /// An enclosure of the range over the box `u × v` (float endpoints, any
+    /// position) by the convex hull property: the coefficients on a piece
+    /// holding the box — the box itself on the square, the right triangle
+    /// with legs `Δu + Δv` at its lower-left corner on the triangle — by de
+    /// Casteljau at point parameters, their hull. Unlike interval de
+    /// Casteljau over `u × v` (whose excess is about the coefficients'
+    /// size times the width, hopeless where they cancel heavily), the excess
+    /// is of the order of the range's own variation plus rounding.
+    fn hull_over(&self, u: [f64; 2], v: [f64; 2]) -> Interval {
+        let pt = |x: f64| interval!(x, x).unwrap_or(Interval::ENTIRE);
+        let coeffs: Vec<Interval> = match self {
+            FPoly::Tensor(t) => {
+                let (m, n) = t.degree();
+                // The coefficients of one line on [a, b] ⊆ its parameter
+                // range (a superset: the second split point rounded up).
+                let restrict = |line: &[Interval], [a, b]: [f64; 2]| -> Vec<Interval> {
+                    if line.len() == 1 {
+                        return line.to_vec();
+                    }
+                    let (_, right) = split_coeffs(line, pt(a));
+                    let gamma = ((pt(b) - pt(a)) / (pt(1.0) - pt(a))).sup();
+                    split_coeffs(&right, pt(gamma)).0
+                };
+                let c = t.coeffs();
+                let rows: Vec<Vec<Interval>> = (0..=m)
+                    .map(|i| restrict(&c[i * (n + 1)..(i + 1) * (n + 1)], v))
+                    .collect();
+                let mut out = Vec::with_capacity((m + 1) * (n + 1));
+                for j in 0..=n {
+                    let col: Vec<Interval> = rows.iter().map(|r| r[j]).collect();
+                    out.extend(restrict(&col, u));
+                }
+                out
+            }
+            FPoly::Triangle(t) => {
+                let side = (pt(u[1]) - pt(u[0])) + (pt(v[1]) - pt(v[0]));
+                let bary = |a: Interval, b: Interval| [a, b, pt(1.0) - a - b];
+                let (u0, v0) = (pt(u[0]), pt(v[0]));
+                let verts = [bary(u0, v0), bary(u0 + side, v0), bary(u0, v0 + side)];
+                t.subdivide(&verts).coeffs().to_vec()
+            }
+        };
+        coeffs.iter().fold(Interval::EMPTY, |acc, c| acc.convex_hull(*c))
+    }
+}
+
+/// The `f64` interval hull of a rational interval.
+fn hull(x: &RI) -> Interval {
+    let (lo, hi) = (rational_to_interval(&x.lo), rational_to_interval(&x.hi));
+    interval!(lo.inf(), hi.sup()).unwrap_or(Interval::ENTIRE)
+}
+
+/// A rational interval holding the `f64` interval `x` (its endpoints are
+/// dyadic and exact); `None` where `x` is unbounded or empty.
+fn exact_iv(x: Interval) -> Option<RI> {
+    if x.is_empty() {
+        return None;
+    }
+    Some(RI::new(Q::from_float(x.inf())?, Q::from_float(x.sup())?))
 }
 
 /// [`ExactSystem`]'s polynomials with integer coefficients.
@@ -231,6 +336,9 @@ impl ExactSystem {
             input: ([f, g], h),
             scaled: std::sync::OnceLock::new(),
             df: std::sync::OnceLock::new(),
+            d2f: std::sync::OnceLock::new(),
+            float: std::sync::OnceLock::new(),
+            power: std::sync::OnceLock::new(),
         })
     }
 
@@ -246,6 +354,46 @@ impl ExactSystem {
     fn df(&self) -> &[[Poly; 2]; 2] {
         self.df
             .get_or_init(|| self.scaled().f.clone().map(|p| Poly::new(self.shape, p).derivs()))
+    }
+
+    /// The second derivatives `[k][d][e]` as exact polynomials.
+    fn d2f(&self) -> &[[[Poly; 2]; 2]; 2] {
+        self.d2f
+            .get_or_init(|| self.df().clone().map(|row| row.map(|p| p.derivs())))
+    }
+
+    /// The derivatives in `f64` intervals.
+    fn float(&self) -> &FloatDerivs {
+        self.float.get_or_init(|| FloatDerivs {
+            d1: self.df().clone().map(|row| row.map(|p| FPoly::of(&p))),
+        })
+    }
+
+    /// The Jacobian over `x` enclosed in `f64` interval arithmetic: at a
+    /// point by interval de Casteljau, over a box by the hull of the
+    /// coefficients on a piece holding it ([`FPoly::hull_over`]). Only
+    /// `F(x̃)` must be exact for Krawczyk's operator to contract to a simple
+    /// root; `F'(X)` needs to be tight relative to `|F'|`, which
+    /// `f64` gives unless the Jacobian itself is lost to rounding (then
+    /// [`ExactSystem::certify`] falls back to the exact enclosure).
+    fn jacobian_float(&self, x: &[RI; 2]) -> Option<[[RI; 2]; 2]> {
+        let fl = self.float();
+        let xf = [hull(&x[0]), hull(&x[1])];
+        let is_point = x.iter().all(|c| c.lo == c.hi);
+        let entry = |p: &FPoly| -> Option<RI> {
+            let j = if is_point {
+                p.over(xf[0], xf[1])
+            } else {
+                p.hull_over([xf[0].inf(), xf[0].sup()], [xf[1].inf(), xf[1].sup()])
+            };
+            if !(j.inf().is_finite() && j.sup().is_finite()) {
+                return None;
+            }
+            exact_iv(j)
+        };
+        let [[a, b], [c, d]] = &fl.d1;
+        let [[a, b], [c, d]] = [[entry(a), entry(b)], [entry(c), entry(d)]];
+        Some([[a?, b?], [c?, d?]])
     }
 
     /// The Jacobian `[f_u, f_v, g_u, g_v]` at `(u, v)`, in `f64` (an
@@ -512,19 +660,124 @@ impl ExactSystem {
     /// empty. Used on the small undecided regions that rounding left: with
     /// exact coefficients the noise that defeated the interval Krawczyk test
     /// is gone (two roots 1e-8 apart, say).
+    ///
+    /// First with the Jacobian enclosed in `f64` intervals ([`Fast`]: `F` at
+    /// the centre is still exact), then, if that is undecided, with every
+    /// enclosure exact.
     pub fn certify(&self, bx: Box2) -> Verdict<Box2, ()> {
-        exact::certify(self, bx)
+        let fast = Fast {
+            sys: self,
+            lossy: std::cell::Cell::new(false),
+        };
+        match exact::certify(&fast, bx) {
+            Verdict::Undecided(()) if fast.lossy.get() => exact::certify(self, bx),
+            v => v,
+        }
+    }
+
+    /// `p(x)` exactly at the point `x` (integer coefficients `c`).
+    fn value_at(&self, k: usize, x: &[Q; 2]) -> Q {
+        let power = self.power.get_or_init(|| {
+            let f = &self.scaled().f;
+            Some([
+                power::PowerForm::new(self.shape, &f[0])?,
+                power::PowerForm::new(self.shape, &f[1])?,
+            ])
+        });
+        let num = match power {
+            Some(p) => p[k].eval_at(x),
+            None => eval_at(self.shape, &self.scaled().f[k], x),
+        };
+        let (b, d) = (x[0].denom(), x[1].denom());
+        let den = match self.shape {
+            Shape::Tensor(m, n) => num_traits::pow(b.clone(), m) * num_traits::pow(d.clone(), n),
+            Shape::Triangle(n) => num_traits::pow(b * d, n),
+        };
+        Q::new(num, den)
     }
 }
 
-impl RationalSystem for ExactSystem {
+/// [`ExactSystem`] with its Jacobian enclosed in `f64` intervals
+/// ([`ExactSystem::jacobian_float`]; exactly where that is unbounded).
+struct Fast<'a> {
+    sys: &'a ExactSystem,
+    /// Set when rounding visibly limited the Jacobian: its enclosure at the
+    /// centre is not tight (or not finite), so an exact retry may succeed
+    /// where this one failed.
+    lossy: std::cell::Cell<bool>,
+}
+
+impl RationalSystem for Fast<'_> {
     fn value(&self, x: &[RI; 2]) -> [RI; 2] {
-        let f = &self.scaled().f;
-        [0, 1].map(|k| eval(self.shape, &f[k], x))
+        self.sys.value(x)
     }
 
     fn jacobian(&self, x: &[RI; 2]) -> [[RI; 2]; 2] {
-        [0, 1].map(|k| [0, 1].map(|d| self.df()[k][d].enclose(x)))
+        match self.sys.jacobian_float(x) {
+            Some(j) => {
+                if x.iter().all(|c| c.lo == c.hi) && !tight(&j) {
+                    self.lossy.set(true);
+                }
+                j
+            }
+            None => {
+                self.lossy.set(true);
+                self.sys.jacobian(x)
+            }
+        }
+    }
+}
+
+/// Every entry's width is below a thousandth of its row's largest magnitude
+/// (then rounding costs Krawczyk's contraction little, and the exact retry
+/// would not do better).
+fn tight(j: &[[RI; 2]; 2]) -> bool {
+    j.iter().all(|row| {
+        let mag = |r: &RI| r.lo.abs().max(r.hi.abs());
+        let scale = mag(&row[0]).max(mag(&row[1]));
+        let limit = &scale / Q::from_integer(1000.into());
+        row.iter().all(|r| r.width() <= limit)
+    })
+}
+
+impl RationalSystem for ExactSystem {
+    /// Exact at a point (by integer de Casteljau), an enclosure otherwise.
+    fn value(&self, x: &[RI; 2]) -> [RI; 2] {
+        let f = &self.scaled().f;
+        if x.iter().all(|c| c.lo == c.hi) {
+            let p = [x[0].lo.clone(), x[1].lo.clone()];
+            return [0, 1].map(|k| RI::point(self.value_at(k, &p)));
+        }
+        [0, 1].map(|k| eval(self.shape, &f[k], x))
+    }
+
+    /// Each entry `j = ∂f_k/∂x_d` enclosed twice, kept where both agree:
+    /// by de Casteljau over `X`, and by the centred (mean-value) form
+    /// `j(m) + Σ_e ∂j/∂x_e(X)·(X_e − m)` about the box's centre `m`. Near a
+    /// root where the coefficients cancel heavily (`|∇f|` far below their
+    /// size: roots of a product of many lines, a few hundredths apart) the
+    /// direct enclosure is about `n·max|c|·w` wide, which swamps `|∇f|`
+    /// unless `w` is tiny; the centred form's excess is of order `w²`.
+    fn jacobian(&self, x: &[RI; 2]) -> [[RI; 2]; 2] {
+        let is_point = x.iter().all(|c| c.lo == c.hi);
+        if is_point {
+            return [0, 1].map(|k| [0, 1].map(|d| self.df()[k][d].enclose(x)));
+        }
+        let two = Q::from_integer(2.into());
+        let m = [0, 1].map(|e| (&x[e].lo + &x[e].hi) / &two);
+        let pm = [RI::point(m[0].clone()), RI::point(m[1].clone())];
+        let dx = [x[0].sub_point(&m[0]), x[1].sub_point(&m[1])];
+        [0, 1].map(|k| {
+            [0, 1].map(|d| {
+                let direct = self.df()[k][d].enclose(x);
+                let mut centred = self.df()[k][d].enclose(&pm);
+                for (e, dxe) in dx.iter().enumerate() {
+                    centred = centred.add(&self.d2f()[k][d][e].enclose(x).mul(dxe));
+                }
+                // Both contain every value over X, so they meet.
+                direct.meet(&centred).unwrap_or(direct)
+            })
+        })
     }
 }
 
