@@ -187,6 +187,15 @@ pub fn solve_rect(
     objective: Option<Objective<'_>>,
     opts: &RectOptions,
 ) -> Result<RectSolution> {
+    solve_rect_iv(rect_problem(f, g, objective)?, opts)
+}
+
+/// The [`RectProblem`] of [`solve_rect`]'s arguments (errors as there).
+fn rect_problem(
+    f: &TensorBezier<Interval>,
+    g: &TensorBezier<Interval>,
+    objective: Option<Objective<'_>>,
+) -> Result<RectProblem> {
     let (du, dv) = f.domain();
     let same = |p: &TensorBezier<Interval>| {
         let (a, b) = p.domain();
@@ -229,7 +238,7 @@ pub fn solve_rect(
         squares: None,
         exact: None,
     };
-    solve_rect_iv(problem, opts)
+    Ok(problem)
 }
 
 /// [`solve_rect`] (no objective) for a system also known exactly: `exact`
@@ -245,31 +254,9 @@ pub(crate) fn solve_rect_exact(
     if !(unit(du) && unit(dv)) {
         return Err(Error::Shape("an exact system is solved on the unit square".into()));
     }
-    // Bidegree at least (1, 1) (the box solver's shape); the exact system
-    // is used only through boxes in domain coordinates.
-    let (m, n) = f.degree();
-    let (p, q) = g.degree();
-    let (m, n) = (m.max(p).max(1), n.max(q).max(1));
-    let iv = |x: &Interval| Iv::new(x.inf(), x.sup());
-    let lift = |t: &TensorBezier<Interval>| -> Result<Vec<Iv>> {
-        let e = if t.degree() == (m, n) {
-            t.clone()
-        } else {
-            t.elevate(m, n)?
-        };
-        Ok(e.coeffs().iter().map(iv).collect())
-    };
-    let problem = RectProblem {
-        m,
-        n,
-        domain: [[Iv::point(0.0), Iv::point(1.0)]; 2],
-        f: lift(f)?,
-        g: lift(g)?,
-        num: None,
-        den: None,
-        squares: None,
-        exact: Some(exact),
-    };
+    // The exact system is used only through boxes in domain coordinates.
+    let mut problem = rect_problem(f, g, None)?;
+    problem.exact = Some(exact);
     solve_rect_iv(problem, opts)
 }
 
