@@ -154,13 +154,38 @@ impl Polynomial {
                 other.terms.len()
             )));
         }
-        let mut out = Self::zero();
-        for ((a1, b1), c1) in &self.terms {
-            for ((a2, b2), c2) in &other.terms {
-                out.add_term((a1 + a2, b1 + b2), c1 * c2);
+        // Over one integer denominator per factor: the products and sums are
+        // integer ones, and each coefficient is reduced once at the end (a
+        // gcd per rational product made a product of 25 lines take 0.5 s).
+        let (d1, n1) = self.integer_terms();
+        let (d2, n2) = other.integer_terms();
+        let mut sums: BTreeMap<(u32, u32), BigInt> = BTreeMap::new();
+        for ((a1, b1), c1) in &n1 {
+            for ((a2, b2), c2) in &n2 {
+                *sums.entry((a1 + a2, b1 + b2)).or_insert_with(BigInt::zero) += c1 * c2;
             }
         }
-        Ok(out)
+        let den = d1 * d2;
+        let terms = sums
+            .into_iter()
+            .filter(|(_, c)| !c.is_zero())
+            .map(|(k, c)| (k, BigRational::new(c, den.clone())))
+            .collect();
+        Ok(Self { terms })
+    }
+
+    /// `(D, [(key, D·c)])`: the terms over the lcm `D` of their denominators.
+    fn integer_terms(&self) -> (BigInt, Vec<((u32, u32), BigInt)>) {
+        let d = self
+            .terms
+            .values()
+            .fold(BigInt::one(), |d, c| num_integer::Integer::lcm(&d, c.denom()));
+        let terms = self
+            .terms
+            .iter()
+            .map(|(k, c)| (*k, c.numer() * (&d / c.denom())))
+            .collect();
+        (d, terms)
     }
 
     /// `self^e` by repeated squaring; errors past total degree 200.

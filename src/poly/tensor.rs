@@ -240,11 +240,18 @@ impl<S: Scalar> TensorBezier<S> {
             )));
         }
         let (m, n) = (self.m, self.n);
-        let eu = S::cached_matrix(MatrixKey::UniElevate(m, m2), || l2::uni_elevation_exact(m, m2));
-        let ev = S::cached_matrix(MatrixKey::UniElevate(n, n2), || l2::uni_elevation_exact(n, n2));
-        Ok(self
-            .map_lines(Direction::U, &eu, m2 + 1)
-            .map_lines(Direction::V, &ev, n2 + 1))
+        // A direction whose degree stays is left alone (the identity's
+        // products would cost O(m²n) for nothing, and in rationals a gcd each).
+        let mut out = self.clone();
+        if m2 > m {
+            let eu = S::cached_matrix(MatrixKey::UniElevate(m, m2), || l2::uni_elevation_exact(m, m2));
+            out = out.map_lines(Direction::U, &eu, m2 + 1);
+        }
+        if n2 > n {
+            let ev = S::cached_matrix(MatrixKey::UniElevate(n, n2), || l2::uni_elevation_exact(n, n2));
+            out = out.map_lines(Direction::V, &ev, n2 + 1);
+        }
+        Ok(out)
     }
 
     /// The product `f·g` of bidegree `(m₁ + m₂, n₁ + n₂)` on `f`'s rectangle
