@@ -17,7 +17,7 @@
 
 use crate::error::{Error, Result};
 use crate::scalar::rational_to_f64;
-use crate::solve::{solve, Domain, Method, Solution, SolveOptions, SplitRule};
+use crate::solve::{solve, Domain, Method, Solution, SolveOptions, SplitRule, TriangleRoute};
 use crate::{parse_polynomial, Polynomial};
 use serde_json::Value;
 
@@ -171,6 +171,7 @@ pub fn table_options(method: Method, eps: f64, variant: Variant) -> SolveOptions
         probe: false,
         split: variant.split,
         swap_roles: variant.swap_roles,
+        triangle_route: TriangleRoute::Triangle,
         ..SolveOptions::default()
     }
 }

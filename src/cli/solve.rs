@@ -7,7 +7,7 @@ use super::json::{write_document, SolutionJson};
 use super::output::Answer;
 use crate::error::{Error, Result};
 use crate::poly::parse_polynomial;
-use crate::solve::{solve, solve_bb, Domain, Method, Solution, SolveOptions, SquareRoute};
+use crate::solve::{solve, solve_bb, Domain, Method, Solution, SolveOptions, SquareRoute, TriangleRoute};
 
 /// Arguments of `rootclip solve`.
 #[derive(Clone, Debug, clap::Args)]
@@ -50,6 +50,10 @@ pub(super) struct SolveArgs {
     /// triangles with --method (the paper's conversion).
     #[arg(long, value_enum, default_value = "rect")]
     square_route: SquareRoute,
+    /// How the triangle is solved (exact input): on boxes of the unit
+    /// square (default), or on tri-boxes with --method (seed 004).
+    #[arg(long, value_enum, default_value = "rect")]
+    triangle_route: TriangleRoute,
     /// Wall-clock budget in seconds: past it no further box is processed,
     /// and the answer lists the unexplored regions as leftovers (complete =
     /// false).
@@ -65,7 +69,8 @@ pub(super) fn run(args: &SolveArgs) -> Result<Answer> {
         .with_method(args.method)
         .with_eps(args.eps)
         .with_max_boxes(args.max_boxes)
-        .with_square_route(args.square_route);
+        .with_square_route(args.square_route)
+        .with_triangle_route(args.triangle_route);
     let opts = match args.timeout {
         Some(s) => opts.with_timeout(std::time::Duration::try_from_secs_f64(s).map_err(|_| {
             Error::InvalidOption(format!("--timeout must be a non-negative number of seconds, got {s}"))

@@ -356,22 +356,40 @@ impl Polynomial {
     /// work is bounded by the input's size, so the degree limit of 200 (a guard against
     /// runaway *parsing*) does not apply: going through [`Self::pow`] here used
     /// to panic for degrees above it.
+    ///
+    /// In integers over the coefficients' common denominator, each sum
+    /// reduced once at the end.
     pub fn from_triangle(f: &TriBezier<BigRational>) -> Self {
-        let mut out = Self::zero();
-        for ((i, j, k), c) in tri_indices(f.degree()).zip(f.coeffs()) {
+        let n = f.degree();
+        let den = f
+            .coeffs()
+            .iter()
+            .fold(BigInt::one(), |d, c| num_integer::Integer::lcm(&d, c.denom()));
+        // sums[tri_index(n, a, b)]: the numerator of the coefficient of u^a v^b.
+        let mut sums = vec![BigInt::zero(); tri_len(n)];
+        for ((i, j, k), c) in tri_indices(n).zip(f.coeffs()) {
             if c.is_zero() {
                 continue;
             }
-            let scaled = c * BigRational::from_integer(multinomial(i, j, k));
+            let scaled = c.numer() * (&den / c.denom()) * multinomial(i, j, k);
             for p in 0..=k {
                 for q in 0..=k - p {
-                    let t = &scaled * BigRational::from_integer(multinomial(p, q, k - p - q));
-                    let t = if (p + q) % 2 == 1 { -t } else { t };
-                    out.add_term(((i + p) as u32, (j + q) as u32), t);
+                    let t = &scaled * multinomial(p, q, k - p - q);
+                    let sum = &mut sums[tri_index(n, i + p, j + q)];
+                    if (p + q) % 2 == 1 {
+                        *sum -= t;
+                    } else {
+                        *sum += t;
+                    }
                 }
             }
         }
-        out
+        let terms = tri_indices(n)
+            .zip(sums)
+            .filter(|(_, c)| !c.is_zero())
+            .map(|((a, b, _), c)| ((a as u32, b as u32), BigRational::new(c, den.clone())))
+            .collect();
+        Self { terms }
     }
 }
 

@@ -230,6 +230,7 @@ pub(super) fn candidates(
             w: dist.w.map(|w| w.c.clone()),
         }),
         exact: None,
+        triangle: false,
     };
     // Floating point proposes a near point; its enclosed distance bounds the
     // minimum from above, so every region provably farther is pruned from

@@ -107,6 +107,7 @@ pub(super) fn intersect_rect(p: &TensorPatch, ray: &Ray, opts: &RayOptions) -> R
         den: den.clone(),
         squares: None,
         exact: None,
+        triangle: false,
     };
     let ropts = RectOptions {
         eps: opts.solve.eps,

@@ -39,7 +39,7 @@ mod solution;
 pub(crate) mod tribox;
 mod univariate;
 
-pub use options::{Domain, SolveOptions, SquareRoute};
+pub use options::{Domain, SolveOptions, SquareRoute, TriangleRoute};
 pub use referee::{classify_roots, ClaimVerdict, RootClassification};
 
 use crate::error::{Error, Result};
@@ -330,6 +330,11 @@ fn solve_exact_triangle(
         eg.coeffs().to_vec(),
         None,
     )?;
+    if opts.triangle_route == TriangleRoute::Rect {
+        if let Some(sol) = triangle_by_boxes(&ef, &eg, &sys, opts)? {
+            return Ok(sol);
+        }
+    }
     let piece = Piece {
         f: tf,
         g: tg,
@@ -340,8 +345,59 @@ fn solve_exact_triangle(
     Ok(finish_exact(
         solve_pieces(vec![piece], &global, Domain::Triangle, opts),
         &sys,
+        &sys,
         opts.deadline,
     ))
+}
+
+/// [`TriangleRoute::Rect`]: the exact triangle system `sys` (of `ef`, `eg`)
+/// solved on boxes of the unit square, where the same polynomials have an
+/// exact tensor form of bidegree (degree in `u`, degree in `v`); the boxes
+/// beyond the hypotenuse are dropped by the box solver, and the roots whose
+/// boxes reach an edge of the triangle are settled exactly against `sys`.
+/// `None` when the box solver's budget ran out (the caller falls back to
+/// tri-boxes).
+fn triangle_by_boxes(
+    ef: &TriBezier<BigRational>,
+    eg: &TriBezier<BigRational>,
+    sys: &settle::ExactSystem,
+    opts: &SolveOptions,
+) -> Result<Option<Solution>> {
+    let (pf, pg) = (Polynomial::from_triangle(ef), Polynomial::from_triangle(eg));
+    let ((m, n), (p, q)) = (pf.degrees(), pg.degrees());
+    let (dm, dn) = ((m.max(p) as usize).max(1), (n.max(q) as usize).max(1));
+    let (tf, tg) = (pf.to_square().elevate(dm, dn)?, pg.to_square().elevate(dm, dn)?);
+    let (tf, tg) = (tf.map_coeffs(scaler(tf.coeffs())), tg.map_coeffs(scaler(tg.coeffs())));
+    let boxes = settle::ExactSystem::new(
+        settle::Shape::Tensor(dm, dn),
+        tf.coeffs().to_vec(),
+        tg.coeffs().to_vec(),
+        None,
+    )?;
+    let enclose = |q: &BigRational| Interval::from_rational(q);
+    let sol = rect::solve_rect_exact(
+        &tf.map(enclose),
+        &tg.map(enclose),
+        std::sync::Arc::new(boxes.clone()),
+        true,
+        &rect_options(opts),
+    )?
+    .solution;
+    let late = || opts.deadline.is_some_and(|d| std::time::Instant::now() >= d);
+    if !sol.complete && !late() {
+        return Ok(None);
+    }
+    let sol = finish_exact(sol, &boxes, sys, opts.deadline);
+    let stuck = sol
+        .clusters
+        .iter()
+        .any(|c| c.reason == UndecidedReason::MultipleOrClose);
+    if stuck && dm + dn <= TRIANGLES_RETRY_DEGREE && !late() {
+        // As on the square: two simple roots closer than rounding
+        // separates on boxes may separate on tri-boxes with exact restarts.
+        return Ok(None);
+    }
+    Ok(Some(sol))
 }
 
 /// The exact system on the unit square (equal bidegrees, coprime, not zero).
@@ -365,6 +421,7 @@ fn solve_exact_square(
             &ef.map(enclose),
             &eg.map(enclose),
             std::sync::Arc::new(sys.clone()),
+            false,
             &ropts,
         )?
         .solution;
@@ -376,7 +433,7 @@ fn solve_exact_square(
             // curves and exact restarts handle those.
             return solve_exact_square_triangles(&ef, &eg, &sys, opts);
         }
-        let sol = finish_exact(sol, &sys, opts.deadline);
+        let sol = finish_exact(sol, &sys, &sys, opts.deadline);
         let stuck = sol
             .clusters
             .iter()
@@ -412,6 +469,7 @@ fn solve_exact_square_triangles(
     Ok(finish_exact(
         square_pieces(&ef.map(enclose), &eg.map(enclose), exact, opts)?,
         sys,
+        sys,
         opts.deadline,
     ))
 }
@@ -433,8 +491,14 @@ const EXACT_CERTIFY_MAX: usize = 15;
 /// left them ([`touching_regions`]), so two close roots in two regions are
 /// retried one by one; the regions left are then joined ([`join_undecided`]).
 /// Then every certified root on the boundary is settled
-/// ([`settle_boundary`]).
-fn finish_exact(mut sol: Solution, sys: &settle::ExactSystem, deadline: Option<std::time::Instant>) -> Solution {
+/// ([`settle_boundary`]) against `domain`, the same system in the domain's
+/// own form (`sys` may be another exact form of it, cheaper for Krawczyk).
+fn finish_exact(
+    mut sol: Solution,
+    sys: &settle::ExactSystem,
+    domain: &settle::ExactSystem,
+    deadline: Option<std::time::Instant>,
+) -> Solution {
     let mut kept = Vec::with_capacity(sol.clusters.len());
     for c in std::mem::take(&mut sol.clusters) {
         if deadline.is_some_and(|d| std::time::Instant::now() >= d) {
@@ -467,7 +531,7 @@ fn finish_exact(mut sol: Solution, sys: &settle::ExactSystem, deadline: Option<s
                 rejected = true;
                 continue;
             }
-            let place = locate(bx.ibox(), sys.domain());
+            let place = locate(bx.ibox(), domain.domain());
             if place == Place::Outside {
                 sol.stats.outside_domain += 1;
                 continue;
@@ -486,7 +550,7 @@ fn finish_exact(mut sol: Solution, sys: &settle::ExactSystem, deadline: Option<s
     }
     sol.clusters = kept;
     sol.roots.sort_by(|a, b| a.u.total_cmp(&b.u).then(a.v.total_cmp(&b.v)));
-    settle_boundary(join_undecided(sol), sys)
+    settle_boundary(join_undecided(sol), domain)
 }
 
 /// Certifies the region `bx` in exact arithmetic, bisecting it up to

@@ -60,22 +60,28 @@ pub(crate) fn certify<S: RationalSystem>(sys: &S, bx: Box2) -> Verdict<Box2, ()>
     // that does not halve the box means it will not (and the rationals'
     // sizes double with every step that does).
     for _ in 0..CERTIFY_STEPS {
-        let Some(k) = krawczyk(sys, &x) else {
+        let Some((k, jx)) = krawczyk_with(sys, &x, None) else {
             return Verdict::Undecided(());
         };
         let inside =
             (0..2).all(|d| cmp(&k[d].lo, &x[d].lo) == Ordering::Greater && cmp(&k[d].hi, &x[d].hi) == Ordering::Less);
         if inside {
             // The unique root lies in K, and K(X) ∩ X keeps it: a few more
-            // (quadratically converging) steps bring the box down to
-            // rounding, while each at least halves it.
+            // steps bring the box down to rounding, while each at least
+            // halves it. They reuse X's Jacobian enclosure (it encloses F'
+            // over every K ⊂ X; the contraction per step is then about
+            // |I − Y J(X)| ≈ width(X)·|F''|/|F'| instead of quadratic, still
+            // far below ½ on the small boxes handed here), which saves the
+            // enclosure, the costly part of a step.
             let mut k = k;
             for _ in 0..CERTIFY_STEPS {
                 let w = k[0].width().max(k[1].width());
                 if w.to_f64().is_some_and(|w| w <= TIGHT) {
                     break;
                 }
-                let Some(next) = krawczyk(sys, &k) else { break };
+                let Some((next, _)) = krawczyk_with(sys, &k, Some(&jx)) else {
+                    break;
+                };
                 let (Some(a), Some(b)) = (next[0].meet(&k[0]), next[1].meet(&k[1])) else {
                     break;
                 };
@@ -109,6 +115,12 @@ pub(crate) fn certify<S: RationalSystem>(sys: &S, bx: Box2) -> Verdict<Box2, ()>
 
 /// `K(X) = x̃ − Y F(x̃) + (I − Y J(X))(X − x̃)`, endpoints rounded outward.
 pub(crate) fn krawczyk<S: RationalSystem>(sys: &S, x: &[RI; 2]) -> Option<[RI; 2]> {
+    krawczyk_with(sys, x, None).map(|(k, _)| k)
+}
+
+/// [`krawczyk`] with `J(X)` replaced by `j` when given (any enclosure of
+/// `F'` over a box holding `x`); returns `K` and the enclosure used.
+fn krawczyk_with<S: RationalSystem>(sys: &S, x: &[RI; 2], j: Option<&Jacobian>) -> Option<([RI; 2], Jacobian)> {
     let width = x[0].width().max(x[1].width());
     let bits = precision_bits(&width)?;
     let mid = [x[0].mid_rounded(bits), x[1].mid_rounded(bits)];
@@ -116,7 +128,10 @@ pub(crate) fn krawczyk<S: RationalSystem>(sys: &S, x: &[RI; 2]) -> Option<[RI; 2
     let fm = sys.value(&pt).map(|v| v.lo);
     let jm: [[Q; 2]; 2] = sys.jacobian(&pt).map(|row| row.map(|v| v.lo));
     let y = inverse2_dyadic(&jm, bits)?;
-    let jx: [[RI; 2]; 2] = sys.jacobian(x);
+    let jx: Jacobian = match j {
+        Some(j) => j.clone(),
+        None => sys.jacobian(x),
+    };
     let dx = [x[0].sub_point(&mid[0]), x[1].sub_point(&mid[1])];
     let mut out: [RI; 2] = [RI::point(Q::zero()), RI::point(Q::zero())];
     for (i, o) in out.iter_mut().enumerate() {
@@ -131,8 +146,11 @@ pub(crate) fn krawczyk<S: RationalSystem>(sys: &S, x: &[RI; 2]) -> Option<[RI; 2
         }
         *o = acc.round_out(bits);
     }
-    Some(out)
+    Some((out, jx))
 }
+
+/// `[[f_u, f_v], [g_u, g_v]]` enclosed.
+type Jacobian = [[RI; 2]; 2];
 
 /// Bits after the binary point that keep rounding far below `width²`.
 fn precision_bits(width: &Q) -> Option<u64> {

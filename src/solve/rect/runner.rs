@@ -237,16 +237,20 @@ fn rect_problem(
         den: objective.and_then(|o| o.den).map(lift).transpose()?,
         squares: None,
         exact: None,
+        triangle: false,
     };
     Ok(problem)
 }
 
 /// [`solve_rect`] (no objective) for a system also known exactly: `exact`
-/// is `f = g = 0` in rationals on the same (unit) square.
+/// is `f = g = 0` in rationals on the same (unit) square. With `triangle`,
+/// the roots sought are those of the unit triangle `u + v ≤ 1` (see
+/// [`RectProblem::triangle`]).
 pub(crate) fn solve_rect_exact(
     f: &TensorBezier<Interval>,
     g: &TensorBezier<Interval>,
     exact: Arc<ExactSystem>,
+    triangle: bool,
     opts: &RectOptions,
 ) -> Result<RectSolution> {
     let (du, dv) = f.domain();
@@ -257,6 +261,7 @@ pub(crate) fn solve_rect_exact(
     // The exact system is used only through boxes in domain coordinates.
     let mut problem = rect_problem(f, g, None)?;
     problem.exact = Some(exact);
+    problem.triangle = triangle;
     solve_rect_iv(problem, opts)
 }
 
@@ -283,6 +288,12 @@ pub(crate) struct RectProblem {
     /// exact Krawczyk ([`ExactSystem::certify`]) instead of being split
     /// down to the rounding floor.
     pub(crate) exact: Option<Arc<ExactSystem>>,
+    /// The roots sought are those of the unit triangle `u + v ≤ 1` in the
+    /// (unit) square: a box whose lower-left corner is beyond the
+    /// hypotenuse is dropped, a root whose box reaches it is reported
+    /// `on_boundary` (for the caller to settle exactly), and one whose box
+    /// lies beyond it is dropped.
+    pub(crate) triangle: bool,
 }
 
 /// See [`RectProblem::squares`].
@@ -503,6 +514,13 @@ impl Runner {
     }
 
     fn step(&mut self, mut node: Node) -> Step {
+        // Beyond the hypotenuse: `fl(a + b) > 1` implies `a + b > 1`
+        // (rounding is monotone), and every point of the box has `u ≥ a`,
+        // `v ≥ b` (lower ends of the edges' enclosures).
+        if self.problem.triangle && node.bx[0][0].lo + node.bx[1][0].lo > 1.0 {
+            self.stats.outside_domain += 1;
+            return Step::Done;
+        }
         let sh = self.shape;
         let (f, rest) = node.c.split_at(sh.len);
         let g = &rest[..sh.len];
@@ -884,15 +902,20 @@ impl Runner {
             found
         };
         let domain = self.problem.domain;
+        let triangle = self.problem.triangle;
+        // (As in `step`: a rounded sum beyond 1 proves the exact one is, and
+        // one below 1 that it is below.)
+        let beyond = |x: &IBox| triangle && x[0].inf() + x[1].inf() > 1.0;
         let mut out = Vec::new();
         for r in roots {
             let x = r.bx;
             let outside = (0..2).any(|a| x[a].sup() < domain[a][0].lo || x[a].inf() > domain[a][1].hi);
-            if outside {
+            if outside || beyond(&x) {
                 self.stats.outside_domain += 1;
                 continue;
             }
-            let inside = (0..2).all(|a| x[a].inf() > domain[a][0].hi && x[a].sup() < domain[a][1].lo);
+            let inside = (0..2).all(|a| x[a].inf() > domain[a][0].hi && x[a].sup() < domain[a][1].lo)
+                && !(triangle && x[0].sup() + x[1].sup() >= 1.0);
             out.push(Root {
                 u: x[0].mid(),
                 v: x[1].mid(),
@@ -904,6 +927,7 @@ impl Runner {
         out.sort_by(|a, b| a.u.total_cmp(&b.u).then(a.v.total_cmp(&b.v)));
         let clusters = undecided_clusters(std::mem::take(&mut self.undecided))
             .into_iter()
+            .filter(|c| !beyond(&c.bx.ibox()))
             .chain(self.edge_strips.iter().map(|&s| Cluster {
                 bx: Box2::of(s),
                 reason: UndecidedReason::VanishingEdge,

@@ -4,8 +4,8 @@
 //! their `f64` interval copies ([`FPoly`]) for the Jacobian's enclosures.
 
 use super::{Shape, Q};
-use crate::poly::split_coeffs;
 use crate::poly::{tri_index, Direction, TensorBezier, TriBezier};
+use crate::scalar::iv::Iv;
 use crate::scalar::rational_interval::RI;
 use crate::scalar::rational_to_interval;
 use crate::solve::krawczyk::Bivariate;
@@ -39,7 +39,25 @@ impl FPoly {
     pub(super) fn over(&self, u: Interval, v: Interval) -> Interval {
         match self {
             FPoly::Triangle(t) => t.value(u, v),
-            FPoly::Tensor(t) => t.value(u, v),
+            FPoly::Tensor(t) => {
+                // De Casteljau with interval parameters (each step encloses
+                // its values for every parameter in the range), in [`Iv`].
+                let (m, n) = t.degree();
+                let (u, v) = ([u.inf(), u.sup()], [v.inf(), v.sup()]);
+                let mut c: Vec<Iv> = t.coeffs().iter().map(|x| Iv::new(x.inf(), x.sup())).collect();
+                let at = |line: &mut [Iv], [t0, t1]: [f64; 2]| {
+                    for r in (1..line.len()).rev() {
+                        for j in 0..r {
+                            line[j] = Iv::lerp_range(line[j], line[j + 1], t0, t1);
+                        }
+                    }
+                    line[0]
+                };
+                let mut col: Vec<Iv> = c.chunks_exact_mut(n + 1).map(|row| at(row, v)).collect();
+                debug_assert_eq!(col.len(), m + 1);
+                let x = at(&mut col, u);
+                interval!(x.lo, x.hi).unwrap_or(Interval::ENTIRE)
+            }
         }
     }
 
@@ -56,26 +74,21 @@ impl FPoly {
         let coeffs: Vec<Interval> = match self {
             FPoly::Tensor(t) => {
                 let (m, n) = t.degree();
-                // The coefficients of one line on [a, b] ⊆ its parameter
-                // range (a superset: the second split point rounded up).
-                let restrict = |line: &[Interval], [a, b]: [f64; 2]| -> Vec<Interval> {
-                    if line.len() == 1 {
-                        return line.to_vec();
-                    }
-                    let (_, right) = split_coeffs(line, pt(a));
-                    let gamma = ((pt(b) - pt(a)) / (pt(1.0) - pt(a))).sup();
-                    split_coeffs(&right, pt(gamma)).0
-                };
-                let c = t.coeffs();
-                let rows: Vec<Vec<Interval>> = (0..=m)
-                    .map(|i| restrict(&c[i * (n + 1)..(i + 1) * (n + 1)], v))
-                    .collect();
-                let mut out = Vec::with_capacity((m + 1) * (n + 1));
-                for j in 0..=n {
-                    let col: Vec<Interval> = rows.iter().map(|r| r[j]).collect();
-                    out.extend(restrict(&col, u));
+                // Rows (lines in v) restricted in place, then columns.
+                let mut c: Vec<Iv> = t.coeffs().iter().map(|x| Iv::new(x.inf(), x.sup())).collect();
+                for row in c.chunks_exact_mut(n + 1) {
+                    restrict_line(row, v);
                 }
-                out
+                let mut col = vec![Iv::point(0.0); m + 1];
+                let mut hull = Iv::new(f64::INFINITY, f64::NEG_INFINITY);
+                for j in 0..=n {
+                    for (i, x) in col.iter_mut().enumerate() {
+                        *x = c[i * (n + 1) + j];
+                    }
+                    restrict_line(&mut col, u);
+                    hull = col.iter().fold(hull, |h, x| h.hull(*x));
+                }
+                return interval!(hull.lo, hull.hi).unwrap_or(Interval::ENTIRE);
             }
             FPoly::Triangle(t) => {
                 let side = (pt(u[1]) - pt(u[0])) + (pt(v[1]) - pt(v[0]));
@@ -86,6 +99,51 @@ impl FPoly {
             }
         };
         coeffs.iter().fold(Interval::EMPTY, |acc, c| acc.convex_hull(*c))
+    }
+}
+
+/// The coefficients of the BB line `c` (parameter range `[0, 1]`) on a
+/// superset of `[a, b]`, in place: a de Casteljau split at `a` keeps the
+/// right part, one at `γ ≥ (b − a)/(1 − a)` (rounded up) the left part of
+/// that. Enclosures throughout ([`Iv`]; extrapolation for `a < 0` or
+/// `b > 1` by general products).
+fn restrict_line(c: &mut [Iv], [a, b]: [f64; 2]) {
+    let n = c.len() - 1;
+    if n == 0 {
+        return;
+    }
+    let lerp = |x: Iv, y: Iv, t: f64| {
+        if (0.0..=1.0).contains(&t) {
+            Iv::lerp(x, y, t)
+        } else {
+            Iv::lerp_any(x, y, t)
+        }
+    };
+    // Right part at `a`: after level k, c[n − k] holds the level-k value
+    // at index n − k, which later levels leave alone.
+    if a != 0.0 {
+        for k in 1..=n {
+            for i in 0..=n - k {
+                c[i] = lerp(c[i], c[i + 1], a);
+            }
+        }
+    }
+    let one = Iv::point(1.0);
+    let gamma = Iv::point(b).sub(Iv::point(a)).div(one.sub(Iv::point(a))).hi;
+    if gamma.is_nan() {
+        c.fill(Iv::new(f64::NEG_INFINITY, f64::INFINITY));
+        return;
+    }
+    if gamma >= 1.0 && b <= 1.0 {
+        // The whole right part `[a, 1]`: a superset of `[a, b]`.
+        return;
+    }
+    // Left part at γ: after level k, c[k] holds the level-k value at index
+    // 0, which later levels leave alone.
+    for k in 1..=n {
+        for i in (k..=n).rev() {
+            c[i] = lerp(c[i - 1], c[i], gamma);
+        }
     }
 }
 
