@@ -245,10 +245,23 @@ fn lines_product(lines: &[(i64, i64, i64, i64)]) -> String {
 /// Every root certified, none undecided, `complete`, and each expected
 /// crossing (exact rationals `(u, v)`) inside exactly one root box.
 fn assert_all_certified(f: &str, g: &str, domain: rootclip::solve::Domain, route: SquareRoute, want: &[(f64, f64)]) {
+    use rootclip::solve::SolveOptions;
+    assert_all_certified_with(f, g, domain, &SolveOptions::default().with_square_route(route), want);
+}
+
+/// [`assert_all_certified`] with any options.
+fn assert_all_certified_with(
+    f: &str,
+    g: &str,
+    domain: rootclip::solve::Domain,
+    opts: &rootclip::solve::SolveOptions,
+    want: &[(f64, f64)],
+) {
     use rootclip::poly::parse_polynomial;
-    use rootclip::solve::{solve, SolveOptions};
+    use rootclip::solve::solve;
+    let route = (opts.square_route, opts.triangle_route);
     let (f, g) = (parse_polynomial(f).unwrap(), parse_polynomial(g).unwrap());
-    let sol = solve(&f, &g, domain, &SolveOptions::default().with_square_route(route)).unwrap();
+    let sol = solve(&f, &g, domain, opts).unwrap();
     assert!(
         sol.complete && sol.clusters.is_empty(),
         "{route:?}: {} clusters",
@@ -289,7 +302,7 @@ fn a_pencil_through_an_edge_point_is_all_certified() {
 /// (the degree 20–25 cases of `dev/hard/families.py` take seconds).
 #[test]
 fn grids_of_lines_are_all_certified() {
-    use rootclip::solve::Domain;
+    use rootclip::solve::{Domain, SolveOptions, TriangleRoute};
     let n = 12;
     let d = n + 1;
     let f = lines_product(&(1..=n).map(|i| (1, 0, -i, d)).collect::<Vec<_>>());
@@ -306,7 +319,10 @@ fn grids_of_lines_are_all_certified() {
         }
     }
     assert_all_certified(&f, &g, Domain::Square, SquareRoute::Rect, &square);
-    assert_all_certified(&f, &g, Domain::Triangle, SquareRoute::Triangles, &triangle);
+    for route in [TriangleRoute::Rect, TriangleRoute::Triangle] {
+        let opts = SolveOptions::default().with_triangle_route(route);
+        assert_all_certified_with(&f, &g, Domain::Triangle, &opts, &triangle);
+    }
 }
 
 /// Degrees the box route's scratch arrays once did not hold (≥ 24: no

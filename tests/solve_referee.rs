@@ -4,7 +4,7 @@
 
 use num_rational::BigRational;
 use num_traits::ToPrimitive;
-use rootclip::solve::{solve, Domain, Method, Solution, SolveOptions, SquareRoute};
+use rootclip::solve::{solve, Domain, Method, Solution, SolveOptions, SquareRoute, TriangleRoute};
 use rootclip::{parse_polynomial, Polynomial};
 use serde_json::Value;
 
@@ -13,6 +13,13 @@ const PAPER: &str = include_str!("../papers/hybrid-clipping-2016/paper_tables.js
 fn q(s: &str) -> BigRational {
     let p = parse_polynomial(s).expect("rational");
     p.as_constant().expect("a constant")
+}
+
+/// Every method on the tri-boxes, then the box route (which has no method).
+fn method_routes(methods: &[Method]) -> Vec<(Method, TriangleRoute)> {
+    let mut out: Vec<_> = methods.iter().map(|&m| (m, TriangleRoute::Triangle)).collect();
+    out.push((Method::Hc, TriangleRoute::Rect));
+    out
 }
 
 /// Every box of `sol` that contains the exact point `(u, v)`, compared exactly.
@@ -42,17 +49,25 @@ fn paper_examples_exact_roots_are_certified_once_by_every_method() {
         for root in &roots {
             assert_eq!(f.eval(&root.0, &root.1), BigRational::from_integer(0.into()));
         }
-        for method in Method::ALL {
+        for (method, route) in method_routes(&Method::ALL) {
             let sol = solve(&f, &g, Domain::Triangle, &{
                 let mut o = SolveOptions::default();
                 o.method = method;
+                o.triangle_route = route;
                 o
             })
             .unwrap();
-            assert!(sol.complete && sol.clusters.is_empty(), "example {name} {method}");
-            assert_eq!(sol.roots.len(), roots.len(), "example {name} {method}");
+            assert!(
+                sol.complete && sol.clusters.is_empty(),
+                "example {name} {method} {route:?}"
+            );
+            assert_eq!(sol.roots.len(), roots.len(), "example {name} {method} {route:?}");
             for (u, v) in &roots {
-                assert_eq!(covering(&sol, u, v), 1, "example {name} {method}: root ({u}, {v})");
+                assert_eq!(
+                    covering(&sol, u, v),
+                    1,
+                    "example {name} {method} {route:?}: root ({u}, {v})"
+                );
             }
         }
     }
@@ -238,14 +253,15 @@ fn close_roots_are_covered_by_every_method() {
         BigRational::from_float(lo).unwrap() <= *x && *x <= BigRational::from_float(hi).unwrap()
     };
     for (f, g, domain, roots) in cases {
-        for method in Method::ALL {
+        for (method, route) in method_routes(&Method::ALL) {
             let opts = {
                 let mut o = SolveOptions::default();
                 o.method = method;
+                o.triangle_route = route;
                 o
             };
             let sol = solve(&p(f), &p(g), domain, &opts).unwrap();
-            assert!(sol.complete, "{method} {f}; {g}");
+            assert!(sol.complete, "{method} {route:?} {f}; {g}");
             for (u, v) in &roots {
                 let (u, v) = (q(u), q(v));
                 let covered = sol
@@ -254,7 +270,7 @@ fn close_roots_are_covered_by_every_method() {
                     .map(|r| r.bx)
                     .chain(sol.clusters.iter().map(|c| c.bx))
                     .any(|b| inside(b.u[0], b.u[1], &u) && inside(b.v[0], b.v[1], &v));
-                assert!(covered, "{method} {f}; {g}: root ({u}, {v}) missed: {sol:?}");
+                assert!(covered, "{method} {route:?} {f}; {g}: root ({u}, {v}) missed: {sol:?}");
             }
         }
     }
@@ -322,16 +338,17 @@ fn near_tangential_close_roots_are_certified() {
         } else {
             &[Method::HcNoPre, Method::Hc]
         };
-        for &method in methods {
+        for (method, route) in method_routes(methods) {
             let opts = {
                 let mut o = SolveOptions::default();
                 o.method = method;
+                o.triangle_route = route;
                 o
             };
             let sol = solve(&fp, &gp, domain, &opts).unwrap();
             assert!(
                 sol.complete && sol.clusters.is_empty() && sol.roots.len() == 2,
-                "{f} | {g} ({method}): {sol:?}"
+                "{f} | {g} ({method} {route:?}): {sol:?}"
             );
             let [a, b] = [&sol.roots[0].bx, &sol.roots[1].bx];
             assert!(a.u[1] < b.u[0] || b.u[1] < a.u[0] || a.v[1] < b.v[0] || b.v[1] < a.v[0]);
@@ -562,17 +579,22 @@ fn extreme_scales_are_solved() {
     for (f, g) in &cases {
         let (fp, gp) = (parse_polynomial(f).unwrap(), parse_polynomial(g).unwrap());
         for domain in [Domain::Triangle, Domain::Square] {
-            for method in Method::ALL {
+            for (method, route) in method_routes(&Method::ALL) {
                 for square_route in [SquareRoute::Triangles, SquareRoute::Rect] {
                     let opts = {
                         let mut o = SolveOptions::default();
                         o.method = method;
+                        o.triangle_route = route;
                         o.square_route = square_route;
                         o
                     };
                     let sol = solve(&fp, &gp, domain, &opts).unwrap_or_else(|e| panic!("{f} | {g}: {e}"));
-                    assert!(sol.complete, "{f} | {g} {domain:?} {method}");
-                    assert_eq!(covering(&sol, &u, &v), 1, "{f} | {g} {domain:?} {method}: {sol:?}");
+                    assert!(sol.complete, "{f} | {g} {domain:?} {method} {route:?}");
+                    assert_eq!(
+                        covering(&sol, &u, &v),
+                        1,
+                        "{f} | {g} {domain:?} {method} {route:?}: {sol:?}"
+                    );
                 }
             }
         }
@@ -604,14 +626,19 @@ fn referee_round7_regressions() {
         p("5/7*v^4 + u*v^3 + 1/600000000000000000000000000000*u^2*v^2 - 700000000000000000012000000000000000000060000000000000000001180000000000000000077/21*u^3*v + 1/3500000000000000000000000000000*u^4 + 3/7*u*v^2 - 1/5000000000000000000000000000000*u^2*v + 1/3*u^3 + 2/7*u*v + 1/175000000000000000000000000000"),
         p("-2*u*v^3 - 2/3*u^2*v^2 + 3/2*u^3*v + 4199999999999999999944000000000000000000119999999999999999992020000000000000000049/42*u^4 + 2/5*v^3 + 3/2*u^3 + 3/7*v^2 - 5/7*u^2 + 4/3*u - 1"),
     );
-    for method in Method::ALL {
+    for (method, route) in method_routes(&Method::ALL) {
         let opts = {
             let mut o = SolveOptions::default();
             o.method = method;
+            o.triangle_route = route;
             o
         };
         let sol = solve(&f, &g, Domain::Triangle, &opts).unwrap();
-        assert!(sol.complete && sol.stats.boxes < 100, "{method}: {:?}", sol.stats);
+        assert!(
+            sol.complete && sol.stats.boxes < 100,
+            "{method} {route:?}: {:?}",
+            sol.stats
+        );
     }
     // Round 8: two cubics running within ~1e-10 of each other along an arc;
     // the finer singular floor of exact coefficients, unbounded, split that
@@ -625,4 +652,111 @@ fn referee_round7_regressions() {
     };
     let sol = solve(&f, &g, Domain::Triangle, &opts).unwrap();
     assert!(sol.complete, "{:?}", sol.stats);
+}
+
+/// The triangle's box route (the default on exact input) decides the
+/// triangle's edges exactly: roots on the hypotenuse, on the legs and at
+/// the vertices are kept once, roots `2⁻⁵⁰` beyond the hypotenuse dropped
+/// and `2⁻⁵⁰` inside it kept; both routes give the same answer.
+#[test]
+fn triangle_box_route_settles_the_edges_exactly() {
+    let p = |s: &str| parse_polynomial(s).unwrap();
+    let cases: [(&str, &str, Vec<(&str, &str)>); 6] = [
+        ("u - 1/3", "u + v - 1", vec![("1/3", "2/3")]),
+        (
+            "(u - 1/3)*(u - 2/3)",
+            "v*(u + v - 1)",
+            vec![("1/3", "0"), ("2/3", "0"), ("1/3", "2/3"), ("2/3", "1/3")],
+        ),
+        ("u*(u - 1)", "v*(v - 1)", vec![("0", "0"), ("1", "0"), ("0", "1")]),
+        ("u - 1/2", "u + v - 1 - 1/1125899906842624", vec![]),
+        (
+            "u - 1/2",
+            "u + v - 1 + 1/1125899906842624",
+            vec![("1/2", "562949953421311/1125899906842624")],
+        ),
+        (
+            "(u - 3/5)*(u - 1/5)",
+            "(v - 3/5)*(v - 1/5)",
+            vec![("1/5", "1/5"), ("1/5", "3/5"), ("3/5", "1/5")],
+        ),
+    ];
+    for (f, g, roots) in cases {
+        for route in [TriangleRoute::Rect, TriangleRoute::Triangle] {
+            let opts = SolveOptions::default().with_triangle_route(route);
+            let sol = solve(&p(f), &p(g), Domain::Triangle, &opts).unwrap();
+            assert!(sol.complete && sol.clusters.is_empty(), "{f} | {g} {route:?}: {sol:?}");
+            assert_eq!(sol.roots.len(), roots.len(), "{f} | {g} {route:?}: {sol:?}");
+            for (u, v) in &roots {
+                assert_eq!(
+                    covering(&sol, &q(u), &q(v)),
+                    1,
+                    "{f} | {g} {route:?}: ({u}, {v}) in {sol:?}"
+                );
+            }
+        }
+    }
+}
+
+/// Random dense systems on the triangle (integer coefficients in [−9, 9],
+/// degrees 2–5, both curves shifted through one random point of the
+/// triangle so that each system has roots there): where both routes end
+/// complete without undecided regions, they certify the same roots (each
+/// box of one meets exactly one of the other's).
+#[test]
+fn triangle_routes_agree_on_random_dense_systems() {
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((state >> 33) % 19) as i64 - 9
+    };
+    let mut dense = |n: u32, at: (&BigRational, &BigRational)| {
+        let mut terms = Vec::new();
+        for a in 0..=n {
+            for b in 0..=n - a {
+                terms.push(format!("({})*u^{a}*v^{b}", next()));
+            }
+        }
+        let p = parse_polynomial(&terms.join(" + ")).unwrap();
+        p.sub(&Polynomial::constant(p.eval(at.0, at.1)))
+    };
+    let meets = |a: &rootclip::solve::Box2, b: &rootclip::solve::Box2| {
+        a.u[0] <= b.u[1] && b.u[0] <= a.u[1] && a.v[0] <= b.v[1] && b.v[0] <= a.v[1]
+    };
+    let (mut compared, mut total, mut roots) = (0, 0, 0);
+    for n in 2..=5 {
+        for k in 0..8i64 {
+            let (i, j) = ((3 * k + n as i64) % 13, (5 * k + 2) % 13);
+            let (pu, pv) = (q(&format!("{}/13", i.min(12 - j))), q(&format!("{j}/13")));
+            let (f, g) = (dense(n, (&pu, &pv)), dense(n, (&pu, &pv)));
+            let run = |route| {
+                solve(
+                    &f,
+                    &g,
+                    Domain::Triangle,
+                    &SolveOptions::default().with_triangle_route(route),
+                )
+            };
+            let (Ok(a), Ok(b)) = (run(TriangleRoute::Rect), run(TriangleRoute::Triangle)) else {
+                continue;
+            };
+            total += 1;
+            if !(a.complete && b.complete && a.clusters.is_empty() && b.clusters.is_empty()) {
+                continue;
+            }
+            compared += 1;
+            roots += a.roots.len();
+            assert_eq!(a.roots.len(), b.roots.len(), "{f} | {g}: {a:?} vs {b:?}");
+            for r in &a.roots {
+                let n = b.roots.iter().filter(|s| meets(&r.bx, &s.bx)).count();
+                assert_eq!(n, 1, "{f} | {g}: root {r:?} meets {n} boxes of {b:?}");
+            }
+        }
+    }
+    assert!(
+        compared * 10 >= total * 9 && roots > 20,
+        "{compared} of {total} compared, {roots} roots"
+    );
 }

@@ -3,8 +3,8 @@
 
 Usage: dev/hard/routes.py BINARY [--domain triangle|square] [--seeds N] [--degrees 2,3,4,...]
 
-For each degree, N random dense systems (integer coefficients in [-9, 9];
-total degree n on the triangle, bidegree (n, n) on the square) are solved by
+For each degree, N random dense systems (Bernstein coefficients, integers in
+[-9, 9]; total degree n on the triangle, bidegree (n, n) on the square) are solved by
 `BINARY solve --json` on both routes of the domain (triangle: `--triangle-route
 triangle|rect`; square: `--square-route triangles|rect`). Prints the median
 seconds per route and checks that both routes are complete with the same
@@ -14,14 +14,25 @@ Needs only Python 3.
 import json, random, statistics, subprocess, sys, time
 
 def dense(rng, n, domain):
+    """Random Bernstein coefficients (integers in [-9, 9]) written out in u, v:
+    curves that cross the domain, so that the systems have roots there."""
+    from math import comb
     terms = []
-    for a in range(n + 1):
-        for b in range(n + 1):
-            if domain == "triangle" and a + b > n:
-                continue
-            c = rng.randint(-9, 9)
-            if c:
-                terms.append(f"({c})*u^{a}*v^{b}")
+    if domain == "triangle":
+        for i in range(n + 1):
+            for j in range(n + 1 - i):
+                k = n - i - j
+                c = rng.randint(-9, 9)
+                if c:
+                    w = comb(n, i) * comb(n - i, j)
+                    terms.append(f"({c * w})*u^{i}*v^{j}*(1-u-v)^{k}")
+    else:
+        for i in range(n + 1):
+            for j in range(n + 1):
+                c = rng.randint(-9, 9)
+                if c:
+                    w = comb(n, i) * comb(n, j)
+                    terms.append(f"({c * w})*u^{i}*(1-u)^{n - i}*v^{j}*(1-v)^{n - j}")
     return " + ".join(terms) or "1"
 
 def run(binary, f, g, domain, flag, route):

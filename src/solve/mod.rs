@@ -6,7 +6,8 @@
 //!   Bernstein–Bézier coefficients in `f64`, exact rationals or intervals.
 //! * [`SolveOptions`] chooses the clipping [`Method`] (Liu et al. 2016:
 //!   Bézier, linear, hybrid with and without preprocessing), `eps`, the
-//!   budgets and, for the square, the [`SquareRoute`].
+//!   budgets, the [`SquareRoute`] and, for exact input on the triangle, the
+//!   [`TriangleRoute`].
 //! * [`solve_uni`] finds every root of one univariate polynomial
 //!   ([`UniBezier`](crate::UniBezier)) on its interval, with the
 //!   [`UniSolution`] contract (Descartes' rule, interval Newton, exact

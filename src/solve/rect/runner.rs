@@ -941,6 +941,7 @@ impl Runner {
             .unwrap_or(0);
         let leftovers: Vec<Leftover> = left
             .iter()
+            .filter(|n| !beyond(&n.ibox()))
             .map(|n| Leftover {
                 bx: Box2::of(n.ibox()),
                 triangle: None,
