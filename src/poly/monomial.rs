@@ -367,14 +367,17 @@ impl Polynomial {
             .fold(BigInt::one(), |d, c| num_integer::Integer::lcm(&d, c.denom()));
         // sums[tri_index(n, a, b)]: the numerator of the coefficient of u^a v^b.
         let mut sums = vec![BigInt::zero(); tri_len(n)];
-        for ((i, j, k), c) in tri_indices(n).zip(f.coeffs()) {
-            if c.is_zero() {
+        // C(k; p, q, k − p − q) = C(k, p)·C(k − p, q).
+        let c = super::l2::pascal(n);
+        for ((i, j, k), coeff) in tri_indices(n).zip(f.coeffs()) {
+            if coeff.is_zero() {
                 continue;
             }
-            let scaled = c.numer() * (&den / c.denom()) * multinomial(i, j, k);
+            let scaled = coeff.numer() * (&den / coeff.denom()) * &c[n][i] * &c[n - i][j];
             for p in 0..=k {
+                let sp = &scaled * &c[k][p];
                 for q in 0..=k - p {
-                    let t = &scaled * multinomial(p, q, k - p - q);
+                    let t = &sp * &c[k - p][q];
                     let sum = &mut sums[tri_index(n, i + p, j + q)];
                     if (p + q) % 2 == 1 {
                         *sum -= t;

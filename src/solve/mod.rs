@@ -142,7 +142,7 @@ pub fn solve(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions
     match domain {
         Domain::Triangle => {
             let n = f.total_degree().max(1).max(g.total_degree()) as usize;
-            solve_exact_triangle(f.to_triangle(n), g.to_triangle(n), opts)
+            solve_exact_triangle(f.to_triangle(n), g.to_triangle(n), [f, g], opts)
         }
         Domain::Square => {
             let ((m, n), (p, q)) = (f.degrees(), g.degrees());
@@ -274,9 +274,10 @@ pub fn solve_bb<P: BbPolynomial>(f: &P, g: &P, opts: &SolveOptions) -> Result<So
     match (f.input()?, g.input()?) {
         (BbInput::Triangle(f), BbInput::Triangle(g)) => {
             not_zero(f.is_zero(), g.is_zero())?;
-            no_common_factor(&Polynomial::from_triangle(&f), &Polynomial::from_triangle(&g))?;
+            let (pf, pg) = (Polynomial::from_triangle(&f), Polynomial::from_triangle(&g));
+            no_common_factor(&pf, &pg)?;
             let n = f.degree().max(g.degree()).max(1);
-            solve_exact_triangle(f.elevate(n)?, g.elevate(n)?, opts)
+            solve_exact_triangle(f.elevate(n)?, g.elevate(n)?, [&pf, &pg], opts)
         }
         (BbInput::Square(f), BbInput::Square(g)) => {
             not_zero(
@@ -317,6 +318,7 @@ fn no_common_factor(f: &Polynomial, g: &Polynomial) -> Result<()> {
 fn solve_exact_triangle(
     ef: TriBezier<BigRational>,
     eg: TriBezier<BigRational>,
+    monomial: [&Polynomial; 2],
     opts: &SolveOptions,
 ) -> Result<Solution> {
     let enclose = |q: &BigRational| Interval::from_rational(q);
@@ -332,7 +334,7 @@ fn solve_exact_triangle(
         None,
     )?;
     if opts.triangle_route == TriangleRoute::Rect {
-        if let Some(sol) = triangle_by_boxes(&ef, &eg, &sys, opts)? {
+        if let Some(sol) = triangle_by_boxes(monomial, &sys, opts)? {
             return Ok(sol);
         }
     }
@@ -351,20 +353,23 @@ fn solve_exact_triangle(
     ))
 }
 
-/// [`TriangleRoute::Rect`]: the exact triangle system `sys` (of `ef`, `eg`)
-/// solved on boxes of the unit square, where the same polynomials have an
-/// exact tensor form of bidegree (degree in `u`, degree in `v`); the boxes
+/// [`TriangleRoute::Rect`]: the exact triangle system `sys` (of `pf`, `pg`
+/// in monomial form) solved on boxes of the unit square, where the same
+/// polynomials have an exact tensor form of bidegree (degree in `u`, degree
+/// in `v`); the boxes
 /// beyond the hypotenuse are dropped by the box solver, and the roots whose
 /// boxes reach an edge of the triangle are settled exactly against `sys`.
 /// `None` when the box solver's budget ran out (the caller falls back to
 /// tri-boxes).
 fn triangle_by_boxes(
-    ef: &TriBezier<BigRational>,
-    eg: &TriBezier<BigRational>,
+    [pf, pg]: [&Polynomial; 2],
     sys: &settle::ExactSystem,
     opts: &SolveOptions,
 ) -> Result<Option<Solution>> {
-    let (pf, pg) = (Polynomial::from_triangle(ef), Polynomial::from_triangle(eg));
+    if [pf, pg].iter().any(|p| p.check_conversion_cost(true).is_err()) {
+        // The tensor form would cost more than the tri-boxes' own.
+        return Ok(None);
+    }
     let ((m, n), (p, q)) = (pf.degrees(), pg.degrees());
     let (dm, dn) = ((m.max(p) as usize).max(1), (n.max(q) as usize).max(1));
     let (tf, tg) = (pf.to_square().elevate(dm, dn)?, pg.to_square().elevate(dm, dn)?);
@@ -510,14 +515,7 @@ fn finish_exact(
         let small = c.bx.u[1] - c.bx.u[0] <= EXACT_CERTIFY_BELOW && c.bx.v[1] - c.bx.v[0] <= EXACT_CERTIFY_BELOW;
         // A (nearly) singular Jacobian at the centre: a multiple root, or
         // roots closer than these tests separate; not worth the exact cost.
-        let near_singular = || {
-            let j = sys.jacobian_f64(0.5 * (c.bx.u[0] + c.bx.u[1]), 0.5 * (c.bx.v[0] + c.bx.v[1]));
-            let det = j[0] * j[3] - j[1] * j[2];
-            let scale = (j[0] * j[0] + j[1] * j[1]).sqrt() * (j[2] * j[2] + j[3] * j[3]).sqrt();
-            // (NaN counts as singular.)
-            det.abs().partial_cmp(&(1e-11 * scale)) != Some(std::cmp::Ordering::Greater)
-        };
-        if c.reason != UndecidedReason::MultipleOrClose || !small || near_singular() {
+        if c.reason != UndecidedReason::MultipleOrClose || !small || sys.nearly_singular(c.bx) {
             kept.push(c);
             continue;
         }

@@ -38,7 +38,7 @@ pub(crate) trait RationalSystem {
     fn jacobian(&self, x: &[RI; 2]) -> [[RI; 2]; 2];
 }
 
-/// Krawczyk in exact arithmetic on `bx` widened by a tenth of its size on
+/// Krawczyk in exact arithmetic on `bx` widened by an eighth of its size on
 /// each side, contracted by `X ← K(X) ∩ X` for at most [`CERTIFY_STEPS`]
 /// steps; the contract of
 /// [`ExactSystem::certify`](crate::solve::settle::ExactSystem::certify).
@@ -49,7 +49,9 @@ pub(crate) fn certify<S: RationalSystem>(sys: &S, bx: Box2) -> Verdict<Box2, ()>
     // stay on the widened box's edge, where K(X) ⊂ int X cannot hold).
     let widen = |b: [f64; 2]| {
         let (lo, hi) = (q(b[0])?, q(b[1])?);
-        let r = (&hi - &lo) / Q::from_integer(10.into());
+        // (An eighth: the float endpoints are dyadic, and so stays every
+        // value of the test, whose products then need no gcd.)
+        let r = (&hi - &lo) / Q::from_integer(8.into());
         Some((&lo - &r, &hi + &r))
     };
     let (Some((u0, u1)), Some((v0, v1))) = (widen(bx.u), widen(bx.v)) else {

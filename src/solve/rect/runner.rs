@@ -807,7 +807,7 @@ impl Runner {
     /// and `None` otherwise (also without an exact system).
     ///
     /// Exact Krawczyk proves `K ⊂ int X` on the node's outer box widened by
-    /// a tenth ([`ExactSystem::certify`]): that box holds exactly one root,
+    /// an eighth ([`ExactSystem::certify`]): that box holds exactly one root,
     /// in `K`. Inside the node's inner box, the root is the node's; disjoint
     /// from its outer box, the node holds none; straddling an edge, it is
     /// left to the usual steps (a neighbour may claim it).

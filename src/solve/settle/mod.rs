@@ -502,8 +502,8 @@ impl ExactSystem {
         }
     }
 
-    /// Krawczyk in exact arithmetic on the closed box `bx` widened by a
-    /// tenth of its size on each side (a root on its edge should not defeat
+    /// Krawczyk in exact arithmetic on the closed box `bx` widened by an
+    /// eighth of its size on each side (a root on its edge should not defeat
     /// the test): [`Verdict::Unique`] with a box holding the only root of
     /// the widened box, a simple one, once `K(X) ⊂ int X` for a contraction
     /// `X` of it (every root of the widened box stays in each `X`, so the
@@ -515,15 +515,32 @@ impl ExactSystem {
     /// First with the Jacobian enclosed in `f64` intervals ([`Fast`]: `F` at
     /// the centre is still exact), then, if that is undecided, with every
     /// enclosure exact.
+    ///
+    /// The exact retry is skipped where the Jacobian at the box's centre is
+    /// nearly singular ([`ExactSystem::nearly_singular`]): no Krawczyk test
+    /// proves a multiple root, and near one the exact enclosures (whose
+    /// rationals grow with every product) are the whole cost.
     pub fn certify(&self, bx: Box2) -> Verdict<Box2, ()> {
         let fast = Fast {
             sys: self,
             lossy: std::cell::Cell::new(false),
         };
         match exact::certify(&fast, bx) {
-            Verdict::Undecided(()) if fast.lossy.get() => exact::certify(self, bx),
+            Verdict::Undecided(()) if fast.lossy.get() && !self.nearly_singular(bx) => exact::certify(self, bx),
             v => v,
         }
+    }
+
+    /// Whether the Jacobian at the centre of `bx`, estimated in `f64`, is
+    /// singular within `10⁻¹¹` of its rows' norms (or not finite): a
+    /// multiple root, or roots closer than the exact tests separate. An
+    /// estimate: it decides where exact work is spent, never what is proven.
+    pub fn nearly_singular(&self, bx: Box2) -> bool {
+        let j = self.jacobian_f64(0.5 * (bx.u[0] + bx.u[1]), 0.5 * (bx.v[0] + bx.v[1]));
+        let det = j[0] * j[3] - j[1] * j[2];
+        let scale = (j[0] * j[0] + j[1] * j[1]).sqrt() * (j[2] * j[2] + j[3] * j[3]).sqrt();
+        // (NaN counts as singular.)
+        det.abs().partial_cmp(&(1e-11 * scale)) != Some(std::cmp::Ordering::Greater)
     }
 
     /// `p(x)` exactly at the point `x` (integer coefficients `c`).

@@ -103,46 +103,71 @@ impl FPoly {
 }
 
 /// The coefficients of the BB line `c` (parameter range `[0, 1]`) on a
-/// superset of `[a, b]`, in place: a de Casteljau split at `a` keeps the
-/// right part, one at `γ ≥ (b − a)/(1 − a)` (rounded up) the left part of
-/// that. Enclosures throughout ([`Iv`]; extrapolation for `a < 0` or
-/// `b > 1` by general products).
+/// superset of `[a, b]`, in place, by two de Casteljau splits (enclosures
+/// throughout, [`Iv`]). Normally the right part at `a`, then the left part
+/// of that at `γ ≥ (b − a)/(1 − a)` (rounded up). When `b > 1 ≥ a ≥ 0`
+/// (a box widened past the domain's edge), the left part at `b` first,
+/// then the right part of that at `α ≤ a/b` (rounded down): extrapolating
+/// a degree-`n` line to `t` widens its intervals by `(|1 − t| + |t|)ⁿ`,
+/// which is `(1 + 2(b − 1))ⁿ` from the whole line but `(1 + 2(b − 1)/(1 −
+/// a))ⁿ` from the short piece `[a, 1]` (`1.25¹⁰⁰ ≈ 10¹⁰` for a box an eighth
+/// beyond the edge, at degree 100).
 fn restrict_line(c: &mut [Iv], [a, b]: [f64; 2]) {
     let n = c.len() - 1;
     if n == 0 {
         return;
     }
-    let lerp = |x: Iv, y: Iv, t: f64| {
-        if (0.0..=1.0).contains(&t) {
-            Iv::lerp(x, y, t)
-        } else {
-            Iv::lerp_any(x, y, t)
+    let (pa, pb) = (Iv::point(a), Iv::point(b));
+    if b > 1.0 && a >= 0.0 {
+        left_part(c, b);
+        let alpha = pa.div(pb).lo;
+        if alpha.is_nan() {
+            c.fill(Iv::new(f64::NEG_INFINITY, f64::INFINITY));
+        } else if alpha > 0.0 {
+            right_part(c, alpha);
         }
-    };
-    // Right part at `a`: after level k, c[n − k] holds the level-k value
-    // at index n − k, which later levels leave alone.
-    if a != 0.0 {
-        for k in 1..=n {
-            for i in 0..=n - k {
-                c[i] = lerp(c[i], c[i + 1], a);
-            }
-        }
+        return;
     }
-    let one = Iv::point(1.0);
-    let gamma = Iv::point(b).sub(Iv::point(a)).div(one.sub(Iv::point(a))).hi;
+    if a != 0.0 {
+        right_part(c, a);
+    }
+    let gamma = pb.sub(pa).div(Iv::point(1.0).sub(pa)).hi;
     if gamma.is_nan() {
         c.fill(Iv::new(f64::NEG_INFINITY, f64::INFINITY));
-        return;
+    } else if !(gamma >= 1.0 && b <= 1.0) {
+        // (Else the whole right part `[a, 1]`: a superset of `[a, b]`.)
+        left_part(c, gamma);
     }
-    if gamma >= 1.0 && b <= 1.0 {
-        // The whole right part `[a, 1]`: a superset of `[a, b]`.
-        return;
+}
+
+/// One step of de Casteljau at `t` (extrapolation by general products).
+fn lerp(x: Iv, y: Iv, t: f64) -> Iv {
+    if (0.0..=1.0).contains(&t) {
+        Iv::lerp(x, y, t)
+    } else {
+        Iv::lerp_any(x, y, t)
     }
-    // Left part at γ: after level k, c[k] holds the level-k value at index
-    // 0, which later levels leave alone.
+}
+
+/// The line's coefficients on `[t, 1]`, in place: after level `k`,
+/// `c[n − k]` holds the level-`k` value at index `n − k`, which later levels
+/// leave alone.
+fn right_part(c: &mut [Iv], t: f64) {
+    let n = c.len() - 1;
+    for k in 1..=n {
+        for i in 0..=n - k {
+            c[i] = lerp(c[i], c[i + 1], t);
+        }
+    }
+}
+
+/// The line's coefficients on `[0, t]`, in place: after level `k`, `c[k]`
+/// holds the level-`k` value at index 0, which later levels leave alone.
+fn left_part(c: &mut [Iv], t: f64) {
+    let n = c.len() - 1;
     for k in 1..=n {
         for i in (k..=n).rev() {
-            c[i] = lerp(c[i - 1], c[i], gamma);
+            c[i] = lerp(c[i - 1], c[i], t);
         }
     }
 }
