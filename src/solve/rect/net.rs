@@ -171,7 +171,11 @@ pub(crate) fn eval_box(p: &[Iv], m: usize, n: usize, s: [f64; 2], t: [f64; 2]) -
 
 #[inline(always)]
 fn eval_box_in(p: &[Iv], m: usize, n: usize, s: [f64; 2], t: [f64; 2]) -> Iv {
-    if m < STACK && n < STACK {
+    if m < 4 && n < 4 {
+        let mut col = [Iv::point(0.0); 4];
+        let mut row = [Iv::point(0.0); 4];
+        eval_box_with(p, m, n, s, t, &mut col, &mut row)
+    } else if m < STACK && n < STACK {
         let mut col = [Iv::point(0.0); STACK];
         let mut row = [Iv::point(0.0); STACK];
         eval_box_with(p, m, n, s, t, &mut col, &mut row)
@@ -194,15 +198,35 @@ fn eval_box_with(p: &[Iv], m: usize, n: usize, s: [f64; 2], t: [f64; 2], col: &m
         row[..=n].copy_from_slice(line);
         for k in 1..=n {
             for j in 0..=n - k {
-                row[j] = Iv::lerp_range(row[j], row[j + 1], t[0], t[1]);
+                row[j] = lerp_range(row[j], row[j + 1], t[0], t[1]);
             }
         }
         col[i] = row[0];
     }
     for k in 1..=m {
         for i in 0..=m - k {
-            col[i] = Iv::lerp_range(col[i], col[i + 1], s[0], s[1]);
+            col[i] = lerp_range(col[i], col[i + 1], s[0], s[1]);
         }
     }
     col[0]
+}
+
+/// [`Iv::lerp_range`], inlined into the unrolled de Casteljau above (the
+/// same operations, so the same floats).
+#[inline(always)]
+fn lerp_range(a: Iv, b: Iv, t0: f64, t1: f64) -> Iv {
+    let unit = |t: f64| (0.0..=1.0).contains(&t);
+    if t0 == t1 {
+        return if unit(t0) {
+            Iv::lerp(a, b, t0)
+        } else {
+            Iv::lerp_any(a, b, t0)
+        };
+    }
+    let (x, y) = if unit(t0) && unit(t1) {
+        (Iv::lerp(a, b, t0), Iv::lerp(a, b, t1))
+    } else {
+        (Iv::lerp_any(a, b, t0), Iv::lerp_any(a, b, t1))
+    };
+    x.hull(y)
 }

@@ -12,7 +12,11 @@ use crate::solve::linalg::smallest_singular_left;
 /// The polynomial's value at the local point `(s, t)` (floats in `[0, 1]`).
 #[inline(always)]
 fn eval_local_in(p: &[Iv], m: usize, n: usize, s: f64, t: f64) -> Iv {
-    if m < STACK && n < STACK {
+    if m < 4 && n < 4 {
+        let mut col = [Iv::point(0.0); 4];
+        let mut row = [Iv::point(0.0); 4];
+        eval_local_with(p, m, n, s, t, &mut col, &mut row)
+    } else if m < STACK && n < STACK {
         let mut col = [Iv::point(0.0); STACK];
         let mut row = [Iv::point(0.0); STACK];
         eval_local_with(p, m, n, s, t, &mut col, &mut row)
@@ -85,7 +89,10 @@ struct BoxSystem<'a> {
 /// two points whose difference is the derivative (times the degree).
 #[inline(always)]
 fn jet_mid_in(mid: &[f64], m: usize, n: usize, s: f64, t: f64) -> [f64; 3] {
-    if m < STACK && n < STACK {
+    if m < 4 && n < 4 {
+        let (mut col, mut dcol, mut row) = ([0.0f64; 4], [0.0f64; 4], [0.0f64; 4]);
+        jet_mid_with(mid, (m, n), (s, t), [&mut col, &mut dcol, &mut row])
+    } else if m < STACK && n < STACK {
         let mut col = [0.0f64; STACK];
         let mut dcol = [0.0f64; STACK];
         let mut row = [0.0f64; STACK];

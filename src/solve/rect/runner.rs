@@ -394,7 +394,7 @@ pub(crate) fn solve_rect_iv(p: RectProblem, opts: &RectOptions) -> Result<RectSo
         opts: *opts,
         scale: domain.map(|[lo, hi]| (hi.hi - lo.lo).next_up()),
         stats: Stats::default(),
-        trace: Vec::new(),
+        trace: Vec::with_capacity(64),
         found: Vec::new(),
         undecided: Vec::new(),
         problem: p,
@@ -452,7 +452,12 @@ impl Runner {
     }
 
     fn diameters(&self, mut id: u32) -> Vec<f64> {
-        let mut out = Vec::new();
+        let mut depth = 0;
+        let mut k = id;
+        while k != u32::MAX {
+            (depth, k) = (depth + 1, self.trace[k as usize].0);
+        }
+        let mut out = Vec::with_capacity(depth);
         while id != u32::MAX {
             let (parent, d) = self.trace[id as usize];
             out.push(d);
@@ -469,7 +474,8 @@ impl Runner {
 
     /// The main loop, depth first; returns the boxes a budget left.
     fn drive(&mut self, first: Node) -> Vec<Node> {
-        let mut queue = vec![first];
+        let mut queue = Vec::with_capacity(16);
+        queue.push(first);
         while let Some(node) = queue.pop() {
             if self.stopped_early {
                 break;

@@ -4,10 +4,8 @@
 //! roots off new edges, and the exact sub-boxes they become (clip, split).
 
 use super::net::{at, jacobian_row, one_signed, with_small_degrees, Node, Shape, SMALL_LEN, STACK};
-use crate::scalar::iv::Iv;
-use crate::solve::envelope;
+use crate::scalar::iv::{down, up, Iv};
 use crate::solve::linalg::{inverse2, smallest_singular_left};
-use smallvec::{smallvec, SmallVec};
 
 /// The smallest ratio of a clipped box's sides ([`keep_aspect`]).
 const MIN_ASPECT: f64 = 1e-3;
@@ -49,27 +47,90 @@ fn hull_spans_in(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
 /// docs, step 4); `None` if it provably does not.
 #[inline(always)]
 fn zero_span(p: &[Iv], sh: Shape, d: usize) -> Option<(f64, f64)> {
+    let k = if d == 0 { sh.m } else { sh.n };
+    if k < 4 {
+        zero_span_with(p, sh, d, &mut [0.0; 4], &mut [0.0; 4])
+    } else if k < STACK {
+        zero_span_with(p, sh, d, &mut [0.0; STACK], &mut [0.0; STACK])
+    } else {
+        zero_span_with(p, sh, d, &mut vec![0.0; k + 1], &mut vec![0.0; k + 1])
+    }
+}
+
+/// [`zero_span`] with scratch for the ranges (at least `k + 1` long). A
+/// coefficient that is not finite gives the whole span: a NaN fails
+/// `lo ≤ hi`, an infinite endpoint makes its row's range infinite.
+#[inline(always)]
+fn zero_span_with(p: &[Iv], sh: Shape, d: usize, lo: &mut [f64], hi: &mut [f64]) -> Option<(f64, f64)> {
     let (k, other) = if d == 0 { (sh.m, sh.n) } else { (sh.n, sh.m) };
-    // On the stack up to degree STACK − 1, on the heap above.
-    let mut lo: SmallVec<[f64; STACK]> = smallvec![0.0; k + 1];
-    let mut hi: SmallVec<[f64; STACK]> = smallvec![0.0; k + 1];
+    let mut ok = true;
     for a in 0..=k {
         let (mut l, mut h) = (f64::INFINITY, f64::NEG_INFINITY);
         for b in 0..=other {
             let c = if d == 0 { p[at(sh, a, b)] } else { p[at(sh, b, a)] };
-            if !c.is_finite() {
-                return Some((0.0, 1.0));
-            }
+            ok &= c.lo <= c.hi;
             l = l.min(c.lo);
             h = h.max(c.hi);
         }
-        if !(l.is_finite() && h.is_finite()) {
-            return Some((0.0, 1.0));
-        }
+        ok &= l.is_finite() & h.is_finite();
         lo[a] = l;
         hi[a] = h;
     }
-    envelope::zero_span_inline(&lo[..=k], &hi[..=k])
+    if !ok {
+        return Some((0.0, 1.0));
+    }
+    hull_crossings(&lo[..=k], &hi[..=k])
+}
+
+/// The widened span `[a − 4·10⁻¹⁵, b + 4·10⁻¹⁵] ∩ [0, 1]`, `a` and `b` the
+/// smallest and largest abscissa `i/k` of a range containing 0 or crossing
+/// of a segment joining `(i/k, y_i)` and `(j/k, y_j)`, `y` an endpoint of
+/// its range, of opposite signs (`x_i + (x_j − x_i)·y_i/(y_i − y_j)`);
+/// `None` if there is none. The same floats as
+/// `envelope::zero_span_inline`: the same candidates (a pair whose four
+/// endpoints share a sign has none), and once `a ≤ 0 ≤ 1 ≤ b` no candidate
+/// changes the clamped result.
+#[inline(always)]
+fn hull_crossings(lo: &[f64], hi: &[f64]) -> Option<(f64, f64)> {
+    const MARGIN: f64 = 4e-15;
+    let k = lo.len() - 1;
+    if k == 0 {
+        return (lo[0] <= 0.0 && hi[0] >= 0.0).then_some((0.0, 1.0));
+    }
+    let kf = k as f64;
+    let (mut a, mut b) = (f64::INFINITY, f64::NEG_INFINITY);
+    for i in 0..=k {
+        if lo[i] <= 0.0 && hi[i] >= 0.0 {
+            let xi = i as f64 / kf;
+            a = a.min(xi);
+            b = b.max(xi);
+        }
+    }
+    if a <= 0.0 && b >= 1.0 {
+        return Some((0.0, 1.0));
+    }
+    for i in 0..k {
+        let xi = i as f64 / kf;
+        for j in i + 1..=k {
+            if (lo[i] >= 0.0 && lo[j] >= 0.0) || (hi[i] <= 0.0 && hi[j] <= 0.0) {
+                continue;
+            }
+            let xj = j as f64 / kf;
+            for yi in [lo[i], hi[i]] {
+                for yj in [lo[j], hi[j]] {
+                    if (yi < 0.0 && yj > 0.0) || (yi > 0.0 && yj < 0.0) {
+                        let x = xi + (xj - xi) * (yi / (yi - yj));
+                        a = a.min(x);
+                        b = b.max(x);
+                    }
+                }
+            }
+        }
+    }
+    if a > b {
+        return None;
+    }
+    Some(((a - MARGIN).max(0.0), (b + MARGIN).min(1.0)))
 }
 
 /// Spans from equations that are combinations of `f` and `g` (every root of
@@ -101,13 +162,15 @@ fn preconditioned_spans_in(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
     if !j.iter().all(|x| x.is_finite()) {
         return Some([(0.0, 1.0); 2]);
     }
-    let mut combos: Vec<[f64; 2]> = Vec::with_capacity(3);
+    let mut combos = [[0.0f64; 2]; 3];
+    let mut count = 0;
     if let Some(y) = inverse2(j, 0.0) {
-        combos.push([y[0], y[1]]);
-        combos.push([y[2], y[3]]);
+        combos[..2].copy_from_slice(&[[y[0], y[1]], [y[2], y[3]]]);
+        count = 2;
     }
     if let Some(v) = smallest_singular_left(j) {
-        combos.push(v);
+        combos[count] = v;
+        count += 1;
     }
     let mut spans = [(0.0f64, 1.0f64); 2];
     let mut small = [Iv::point(0.0); SMALL_LEN];
@@ -118,10 +181,9 @@ fn preconditioned_spans_in(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
         large = vec![Iv::point(0.0); sh.len];
         &mut large
     };
-    for w in combos {
-        let (wa, wb) = (Iv::point(w[0]), Iv::point(w[1]));
+    for &[wa, wb] in &combos[..count] {
         for (k, x) in h.iter_mut().enumerate() {
-            *x = wa.mul(f[k]).add(wb.mul(g[k]));
+            *x = times(wa, f[k]).add(times(wb, g[k]));
         }
         if one_signed(h) {
             return None;
@@ -135,6 +197,14 @@ fn preconditioned_spans_in(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
         }
     }
     Some(spans)
+}
+
+/// `Iv::point(a).mul(x)` with its two distinct products only (the same
+/// floats: the minimum and maximum of `a·lo`, `a·hi`, moved outward).
+#[inline(always)]
+fn times(a: f64, x: Iv) -> Iv {
+    let (p, q) = (a * x.lo, a * x.hi);
+    Iv::new(down(p.min(q)), up(p.max(q)))
 }
 
 /// Widens the kept spans so that neither side of the new box is narrower
