@@ -4,6 +4,7 @@
 //! for a box whose separating sign is lost to rounding.
 
 use super::net::{jacobian_row, with_small_degrees, Shape, SMALL_LEN, STACK};
+use super::spans::{lerp_rows, transpose};
 use crate::scalar::iv::Iv;
 use crate::solve::krawczyk::local::{self, LocalSystem};
 use crate::solve::krawczyk::Verdict;
@@ -31,6 +32,26 @@ fn eval_local_in(p: &[Iv], m: usize, n: usize, s: f64, t: f64) -> Iv {
             &mut vec![Iv::point(0.0); n + 1],
         )
     }
+}
+
+/// [`eval_local_in`] for bidegree `(K, K)` (`L = (K + 1)²`) in fixed
+/// arrays: every row in `t` at once, as de Casteljau across the rows of the
+/// transposed net, then the column in `s`. The same `Iv::lerp`s on the same
+/// operands, so the same floats.
+#[inline(always)]
+fn eval_square<const K: usize, const L: usize>(p: &[Iv], s: f64, t: f64) -> Iv {
+    let Ok(c) = <&[Iv; L]>::try_from(p) else {
+        unreachable!("a polynomial holds (K + 1)² coefficients")
+    };
+    let mut tr = transpose::<K, L>(c);
+    lerp_rows::<K, L>(&mut tr, t, true);
+    let col = &mut tr[..=K];
+    for r in 1..=K {
+        for i in 0..=K - r {
+            col[i] = Iv::lerp(col[i], col[i + 1], s);
+        }
+    }
+    col[0]
 }
 
 #[inline(always)]
@@ -137,6 +158,11 @@ fn jet_mid_with(
 
 impl LocalSystem for BoxSystem<'_> {
     fn value(&self, s: f64, t: f64) -> [Iv; 2] {
+        match (self.sh.m, self.sh.n) {
+            (3, 3) => return [eval_square::<3, 16>(self.f, s, t), eval_square::<3, 16>(self.g, s, t)],
+            (2, 2) => return [eval_square::<2, 9>(self.f, s, t), eval_square::<2, 9>(self.g, s, t)],
+            _ => {}
+        }
         with_small_degrees!(self.sh, |m, n| [
             eval_local_in(self.f, m, n, s, t),
             eval_local_in(self.g, m, n, s, t)
@@ -175,4 +201,34 @@ pub(super) fn sign_lost(c: &[Iv], sh: Shape, w: [f64; 2]) -> bool {
         let h = va.mul(*x).add(vb.mul(*y));
         !(h.lo > 0.0 || h.hi < 0.0)
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::Rng;
+
+    #[test]
+    fn square_evaluation_gives_the_general_floats() {
+        let mut rng = Rng(5);
+        for k in 1..=3usize {
+            let len = (k + 1) * (k + 1);
+            for _ in 0..200 {
+                let p: Vec<Iv> = (0..len)
+                    .map(|_| {
+                        let x = rng.next_signed();
+                        Iv::new(x, x + 1e-3 * rng.next_f64())
+                    })
+                    .collect();
+                let (s, t) = (rng.next_f64(), rng.next_f64());
+                let want = eval_local_with(&p, k, k, s, t, &mut [Iv::point(0.0); 4], &mut [Iv::point(0.0); 4]);
+                let got = match k {
+                    1 => eval_square::<1, 4>(&p, s, t),
+                    2 => eval_square::<2, 9>(&p, s, t),
+                    _ => eval_square::<3, 16>(&p, s, t),
+                };
+                assert_eq!(got, want);
+            }
+        }
+    }
 }

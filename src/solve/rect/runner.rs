@@ -629,8 +629,16 @@ impl Runner {
         if area <= 0.5 {
             return Step::Continue(node);
         }
-        // Stalled: clip again with preconditioned equations (`rect` docs).
-        match preconditioned_spans(&node.c, sh) {
+        // Stalled: clip again with preconditioned equations (`rect` docs),
+        // once the box is in Krawczyk's range. Above it, where a stall is
+        // mostly two roots in one box, split at once.
+        let wc = self.rel_width(&node);
+        let pre = if wc[0].max(wc[1]) > KRAWCZYK_BELOW {
+            Some([(0.0, 1.0); 2])
+        } else {
+            preconditioned_spans(&node.c, sh)
+        };
+        match pre {
             None => {
                 self.stats.clip_exclusions += 1;
                 return Step::Done;

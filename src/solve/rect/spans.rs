@@ -272,6 +272,17 @@ pub(super) fn split(node: &Node, sh: Shape, d: usize) -> (Node, Node) {
 /// row_{i+1})`), a contiguous loop the compiler vectorizes; in `t` each row
 /// is one contiguous line.
 fn subdivide_all(c: &mut [Iv], sh: Shape, d: usize, t: f64, right: bool) {
+    let square = |c: &mut [Iv], f: fn(&mut [Iv], usize, f64, bool)| {
+        for block in c.chunks_exact_mut(sh.len).take(sh.polys) {
+            f(block, d, t, right);
+        }
+    };
+    match (sh.m, sh.n) {
+        (3, 3) => return square(c, subdivide_square::<3, 16>),
+        (2, 2) => return square(c, subdivide_square::<2, 9>),
+        (1, 1) => return square(c, subdivide_square::<1, 4>),
+        _ => {}
+    }
     with_small_degrees!(sh, |m, n| subdivide_all_in(
         c,
         Shape {
@@ -284,6 +295,54 @@ fn subdivide_all(c: &mut [Iv], sh: Shape, d: usize, t: f64, right: bool) {
         t,
         right
     ))
+}
+
+/// [`subdivide_all`] on one block of bidegree `(K, K)` (`L = (K + 1)²`
+/// coefficients) in fixed arrays: whole rows combined at once in `s`, and in
+/// `t` the same on the transposed block, so both directions run as
+/// contiguous lanes the compiler vectorizes. The same `Iv::lerp`s on the same
+/// operands as [`subdivide_all_in`], so the same floats.
+#[inline(always)]
+fn subdivide_square<const K: usize, const L: usize>(block: &mut [Iv], d: usize, t: f64, right: bool) {
+    let Ok(c) = <&mut [Iv; L]>::try_from(block) else {
+        unreachable!("a block holds (K + 1)² coefficients")
+    };
+    if d == 0 {
+        lerp_rows::<K, L>(c, t, right);
+    } else {
+        let mut tr = transpose::<K, L>(c);
+        lerp_rows::<K, L>(&mut tr, t, right);
+        *c = transpose::<K, L>(&tr);
+    }
+}
+
+/// The `(K + 1) × (K + 1)` array transposed.
+#[inline(always)]
+pub(super) fn transpose<const K: usize, const L: usize>(c: &[Iv; L]) -> [Iv; L] {
+    std::array::from_fn(|k| c[(k % (K + 1)) * (K + 1) + k / (K + 1)])
+}
+
+/// De Casteljau across the rows of a `(K + 1) × (K + 1)` array at `t`:
+/// `row_i ← lerp(row_i, row_{i+1})` keeps `[t, 1]` (`right`), `row_i ←
+/// lerp(row_{i−1}, row_i)` from the last row down keeps `[0, t]`.
+#[inline(always)]
+pub(super) fn lerp_rows<const K: usize, const L: usize>(c: &mut [Iv; L], t: f64, right: bool) {
+    let w = K + 1;
+    for r in 1..w {
+        if right {
+            for i in 0..w - r {
+                for j in 0..w {
+                    c[i * w + j] = Iv::lerp(c[i * w + j], c[(i + 1) * w + j], t);
+                }
+            }
+        } else {
+            for i in (r..w).rev() {
+                for j in 0..w {
+                    c[i * w + j] = Iv::lerp(c[(i - 1) * w + j], c[i * w + j], t);
+                }
+            }
+        }
+    }
 }
 
 #[inline(always)]
@@ -323,6 +382,52 @@ fn subdivide_all_in(c: &mut [Iv], sh: Shape, d: usize, t: f64, right: bool) {
                         }
                     }
                 }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::Rng;
+
+    fn random_net(rng: &mut Rng, len: usize) -> Vec<Iv> {
+        (0..len)
+            .map(|_| {
+                let x = rng.next_signed();
+                Iv::new(x, x + 1e-3 * rng.next_f64())
+            })
+            .collect()
+    }
+
+    #[test]
+    fn square_subdivision_gives_the_general_floats() {
+        let mut rng = Rng(7);
+        for k in 1..=3 {
+            let sh = Shape::pair(k, k);
+            for _ in 0..50 {
+                let net = random_net(&mut rng, 2 * sh.len);
+                let t = rng.next_f64();
+                for (d, right) in [(0, false), (0, true), (1, false), (1, true)] {
+                    let (mut a, mut b) = (net.clone(), net.clone());
+                    subdivide_all(&mut a, sh, d, t, right);
+                    subdivide_all_in(&mut b, sh, d, t, right);
+                    assert_eq!(a, b, "k {k} d {d} right {right}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn hull_crossings_give_the_envelope_floats() {
+        let mut rng = Rng(11);
+        for k in 0..=5 {
+            for _ in 0..2000 {
+                let lo: Vec<f64> = (0..=k).map(|_| rng.next_signed()).collect();
+                let hi: Vec<f64> = lo.iter().map(|x| x + 0.3 * rng.next_f64()).collect();
+                let want = crate::solve::envelope::zero_span_inline(&lo, &hi);
+                assert_eq!(hull_crossings(&lo, &hi), want, "{lo:?} {hi:?}");
             }
         }
     }
