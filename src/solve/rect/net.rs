@@ -114,7 +114,61 @@ impl Node {
 /// Hulls of `∂p/∂s` and `∂p/∂t` over the box, from the derivative's
 /// Bernstein coefficients.
 pub(super) fn jacobian_row(p: &[Iv], sh: Shape) -> [Iv; 2] {
-    with_small_degrees!(sh, |m, n| jacobian_row_in(p, m, n))
+    match (sh.m, sh.n) {
+        (3, 3) => jacobian_row_square::<3, 16>(p),
+        (2, 2) => jacobian_row_square::<2, 9>(p),
+        _ => with_small_degrees!(sh, |m, n| jacobian_row_in(p, m, n)),
+    }
+}
+
+/// [`jacobian_row_in`] for bidegree `(K, K)` (`L = (K + 1)²`) in a fixed
+/// array. The hulls take `<` selections instead of `f64::min`: with no NaN
+/// difference they pick the same float but for the sign of a zero, and
+/// `down(±0) = −ABS`, `up(±0) = ABS` either way; with one, the hull is NaN
+/// as before.
+#[inline(always)]
+fn jacobian_row_square<const K: usize, const L: usize>(p: &[Iv]) -> [Iv; 2] {
+    let Ok(c) = <&[Iv; L]>::try_from(p) else {
+        unreachable!("a polynomial holds (K + 1)² coefficients")
+    };
+    let w = K + 1;
+    let (mut s_lo, mut s_hi, mut t_lo, mut t_hi) = (
+        [f64::INFINITY; 4],
+        [f64::NEG_INFINITY; 4],
+        [f64::INFINITY; 4],
+        [f64::NEG_INFINITY; 4],
+    );
+    let mut nan = [false; 2];
+    for i in 0..w {
+        for j in 0..w {
+            let x = c[i * w + j];
+            if i < K {
+                let y = c[(i + 1) * w + j];
+                let (lo, hi) = (y.lo - x.hi, y.hi - x.lo);
+                nan[0] |= lo.is_nan() | hi.is_nan();
+                s_lo[j] = if lo < s_lo[j] { lo } else { s_lo[j] };
+                s_hi[j] = if hi > s_hi[j] { hi } else { s_hi[j] };
+            }
+            if j < K {
+                let y = c[i * w + j + 1];
+                let (lo, hi) = (y.lo - x.hi, y.hi - x.lo);
+                nan[1] |= lo.is_nan() | hi.is_nan();
+                t_lo[i] = if lo < t_lo[i] { lo } else { t_lo[i] };
+                t_hi[i] = if hi > t_hi[i] { hi } else { t_hi[i] };
+            }
+        }
+    }
+    let hull = |lo: [f64; 4], hi: [f64; 4], nan: bool| {
+        if nan {
+            return Iv::new(f64::NAN, f64::NAN);
+        }
+        let l = lo[..w].iter().fold(f64::INFINITY, |a, &b| if b < a { b } else { a });
+        let h = hi[..w]
+            .iter()
+            .fold(f64::NEG_INFINITY, |a, &b| if b > a { b } else { a });
+        Iv::new(down(l), up(h)).scale(K as f64)
+    };
+    [hull(s_lo, s_hi, nan[0]), hull(t_lo, t_hi, nan[1])]
 }
 
 #[inline(always)]
@@ -229,4 +283,26 @@ fn lerp_range(a: Iv, b: Iv, t0: f64, t1: f64) -> Iv {
         (Iv::lerp_any(a, b, t0), Iv::lerp_any(a, b, t1))
     };
     x.hull(y)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::Rng;
+
+    #[test]
+    fn square_jacobian_rows_give_the_general_floats() {
+        let mut rng = Rng(9);
+        for k in 2..=3usize {
+            for _ in 0..500 {
+                let p: Vec<Iv> = (0..(k + 1) * (k + 1))
+                    .map(|_| {
+                        let x = rng.next_signed();
+                        Iv::new(x, x + 1e-3 * rng.next_f64())
+                    })
+                    .collect();
+                assert_eq!(jacobian_row(&p, Shape::pair(k, k)), jacobian_row_in(&p, k, k));
+            }
+        }
+    }
 }

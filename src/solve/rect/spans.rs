@@ -16,6 +16,11 @@ const SPLIT: f64 = 63.0 / 128.0;
 /// Bézier clipping of the box in both directions: the intersection of the
 /// spans of `f` and `g` (`rect` docs, step 4); `None` if it is empty.
 pub(super) fn hull_spans(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
+    match (sh.m, sh.n) {
+        (3, 3) => return hull_spans_square::<3, 16>(c),
+        (2, 2) => return hull_spans_square::<2, 9>(c),
+        _ => {}
+    }
     with_small_degrees!(sh, |m, n| hull_spans_in(
         c,
         Shape {
@@ -38,6 +43,49 @@ fn hull_spans_in(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
         if span.0 > span.1 {
             return None;
         }
+    }
+    Some(spans)
+}
+
+/// [`hull_spans_in`] for bidegree `(K, K)`, `K ≤ 3` (`L = (K + 1)²`): the
+/// row and column ranges of each equation in one pass over fixed arrays,
+/// then the same crossings and intersections, so the same floats. The
+/// ranges use `<` selections, not `f64::min`: a NaN coefficient gives the
+/// whole span either way (it fails `lo ≤ hi`), and where the two could
+/// differ, `−0` against `+0`, no crossing depends on it.
+#[inline(always)]
+fn hull_spans_square<const K: usize, const L: usize>(c: &[Iv]) -> Option<[(f64, f64); 2]> {
+    let w = K + 1;
+    let mut spans = [(0.0f64, 1.0f64); 2];
+    for p in 0..2 {
+        let Ok(q) = <&[Iv; L]>::try_from(&c[p * L..(p + 1) * L]) else {
+            unreachable!("a polynomial holds (K + 1)² coefficients")
+        };
+        let (mut rl, mut rh) = ([f64::INFINITY; 4], [f64::NEG_INFINITY; 4]);
+        let (mut cl, mut ch) = ([f64::INFINITY; 4], [f64::NEG_INFINITY; 4]);
+        let mut ok = true;
+        for i in 0..w {
+            for j in 0..w {
+                let x = q[i * w + j];
+                ok &= x.lo <= x.hi;
+                rl[i] = if x.lo < rl[i] { x.lo } else { rl[i] };
+                rh[i] = if x.hi > rh[i] { x.hi } else { rh[i] };
+                cl[j] = if x.lo < cl[j] { x.lo } else { cl[j] };
+                ch[j] = if x.hi > ch[j] { x.hi } else { ch[j] };
+            }
+        }
+        for (d, (lo, hi)) in [(&rl, &rh), (&cl, &ch)].into_iter().enumerate() {
+            let finite = lo[..w].iter().chain(&hi[..w]).all(|x| x.is_finite());
+            let (a, b) = if ok && finite {
+                hull_crossings(&lo[..w], &hi[..w])?
+            } else {
+                (0.0, 1.0)
+            };
+            spans[d] = (spans[d].0.max(a), spans[d].1.min(b));
+        }
+    }
+    if spans.iter().any(|s| s.0 > s.1) {
+        return None;
     }
     Some(spans)
 }
@@ -86,7 +134,9 @@ fn zero_span_with(p: &[Iv], sh: Shape, d: usize, lo: &mut [f64], hi: &mut [f64])
 /// smallest and largest abscissa `i/k` of a range containing 0 or crossing
 /// of a segment joining `(i/k, y_i)` and `(j/k, y_j)`, `y` an endpoint of
 /// its range, of opposite signs (`x_i + (x_j − x_i)·y_i/(y_i − y_j)`);
-/// `None` if there is none. The same floats as
+/// `None` if there is none. With finite ranges every candidate is a number
+/// in `[0, 1]` and never `−0`, so `<` selections pick what `f64::min` would.
+/// The same floats as
 /// `envelope::zero_span_inline`: the same candidates (a pair whose four
 /// endpoints share a sign has none), and once `a ≤ 0 ≤ 1 ≤ b` no candidate
 /// changes the clamped result.
@@ -102,8 +152,8 @@ fn hull_crossings(lo: &[f64], hi: &[f64]) -> Option<(f64, f64)> {
     for i in 0..=k {
         if lo[i] <= 0.0 && hi[i] >= 0.0 {
             let xi = i as f64 / kf;
-            a = a.min(xi);
-            b = b.max(xi);
+            a = least(a, xi);
+            b = most(b, xi);
         }
     }
     if a <= 0.0 && b >= 1.0 {
@@ -120,8 +170,8 @@ fn hull_crossings(lo: &[f64], hi: &[f64]) -> Option<(f64, f64)> {
                 for yj in [lo[j], hi[j]] {
                     if (yi < 0.0 && yj > 0.0) || (yi > 0.0 && yj < 0.0) {
                         let x = xi + (xj - xi) * (yi / (yi - yj));
-                        a = a.min(x);
-                        b = b.max(x);
+                        a = least(a, x);
+                        b = most(b, x);
                     }
                 }
             }
@@ -197,6 +247,26 @@ fn preconditioned_spans_in(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
         }
     }
     Some(spans)
+}
+
+/// The smaller of two numbers (no NaN).
+#[inline(always)]
+fn least(a: f64, b: f64) -> f64 {
+    if b < a {
+        b
+    } else {
+        a
+    }
+}
+
+/// The larger of two numbers (no NaN).
+#[inline(always)]
+fn most(a: f64, b: f64) -> f64 {
+    if b > a {
+        b
+    } else {
+        a
+    }
 }
 
 /// `Iv::point(a).mul(x)` with its two distinct products only (the same
@@ -415,6 +485,26 @@ mod tests {
                     subdivide_all_in(&mut b, sh, d, t, right);
                     assert_eq!(a, b, "k {k} d {d} right {right}");
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn square_hull_spans_give_the_general_floats() {
+        let mut rng = Rng(3);
+        for k in 2..=3 {
+            let sh = Shape::pair(k, k);
+            for _ in 0..2000 {
+                let mut net = random_net(&mut rng, 2 * sh.len);
+                // Shift the equations so that their zero sets cross the box.
+                for p in 0..2 {
+                    let off = 0.8 * rng.next_signed();
+                    for x in &mut net[p * sh.len..(p + 1) * sh.len] {
+                        *x = Iv::new(x.lo + off, x.hi + off);
+                    }
+                }
+                let want = with_small_degrees!(sh, |m, n| hull_spans_in(&net, Shape { m, n, ..sh }));
+                assert_eq!(hull_spans(&net, sh), want);
             }
         }
     }
