@@ -220,7 +220,38 @@ fn jacobian_row_in(p: &[Iv], m: usize, n: usize) -> [Iv; 2] {
 /// bidegree `(m, n)` over the local box `s × t` (any floats, extrapolation
 /// included), by de Casteljau with [`Iv::lerp_range`].
 pub(crate) fn eval_box(p: &[Iv], m: usize, n: usize, s: [f64; 2], t: [f64; 2]) -> Iv {
-    with_small_degrees!(Shape::pair(m, n), |m, n| eval_box_in(p, m, n, s, t))
+    match (m, n) {
+        (3, 3) => eval_box_square::<3, 16>(p, s, t),
+        (2, 2) => eval_box_square::<2, 9>(p, s, t),
+        _ => with_small_degrees!(Shape::pair(m, n), |m, n| eval_box_in(p, m, n, s, t)),
+    }
+}
+
+/// [`eval_box_in`] for bidegree `(K, K)` (`L = (K + 1)²`) in a fixed array:
+/// every row in `t` at once, as de Casteljau across the rows of the
+/// transposed net, then the column in `s`; the same operations, so the same
+/// floats.
+#[inline(always)]
+fn eval_box_square<const K: usize, const L: usize>(p: &[Iv], s: [f64; 2], t: [f64; 2]) -> Iv {
+    let Ok(c) = <&[Iv; L]>::try_from(p) else {
+        return eval_box_in(p, K, K, s, t);
+    };
+    let w = K + 1;
+    let mut tr: [Iv; L] = std::array::from_fn(|k| c[(k % w) * w + k / w]);
+    for r in 1..w {
+        for j in 0..w - r {
+            for i in 0..w {
+                tr[j * w + i] = lerp_range(tr[j * w + i], tr[(j + 1) * w + i], t[0], t[1]);
+            }
+        }
+    }
+    let col = &mut tr[..w];
+    for r in 1..w {
+        for i in 0..w - r {
+            col[i] = lerp_range(col[i], col[i + 1], s[0], s[1]);
+        }
+    }
+    col[0]
 }
 
 #[inline(always)]
@@ -291,7 +322,7 @@ mod tests {
     use crate::rng::Rng;
 
     #[test]
-    fn square_jacobian_rows_give_the_general_floats() {
+    fn square_jacobian_rows_and_box_values_give_the_general_floats() {
         let mut rng = Rng(9);
         for k in 2..=3usize {
             for _ in 0..500 {
@@ -302,6 +333,13 @@ mod tests {
                     })
                     .collect();
                 assert_eq!(jacobian_row(&p, Shape::pair(k, k)), jacobian_row_in(&p, k, k));
+                for (s, t) in [
+                    ([0.25, 0.25], [0.5, 0.75]),
+                    ([0.1, 0.3], [0.6, 0.6]),
+                    ([-0.5, 0.5], [0.9, 1.5]),
+                ] {
+                    assert_eq!(eval_box(&p, k, k, s, t), eval_box_in(&p, k, k, s, t));
+                }
             }
         }
     }
