@@ -306,12 +306,7 @@ pub(super) fn clip(node: &mut Node, sh: Shape, d: usize, alpha: f64, beta: f64) 
             .next_up()
             .min(1.0)
     };
-    if alpha > 0.0 {
-        subdivide_all(&mut node.c, sh, d, alpha, true);
-    }
-    if gamma < 1.0 {
-        subdivide_all(&mut node.c, sh, d, gamma, false);
-    }
+    restrict_all(&mut node.c, sh, d, alpha, gamma);
     let [lo, hi] = node.bx[d];
     // Convex combinations: the endpoint enclosures never grow wider than
     // their parents' (plus rounding), however many clips follow.
@@ -319,6 +314,54 @@ pub(super) fn clip(node: &mut Node, sh: Shape, d: usize, alpha: f64, beta: f64) 
     let new_hi = if gamma < 1.0 { Iv::lerp(new_lo, hi, gamma) } else { hi };
     node.bx[d] = [new_lo, new_hi];
     node.key = None;
+}
+
+/// Every polynomial of the node restricted in direction `d` to `[α, 1]`
+/// (if `α > 0`) and then to the first `γ` of that (if `γ < 1`): two
+/// [`subdivide_all`]s, with the `(K, K)` nets transposed once for both.
+fn restrict_all(c: &mut [Iv], sh: Shape, d: usize, alpha: f64, gamma: f64) {
+    let square = |c: &mut [Iv], f: fn(&mut [Iv], usize, f64, f64)| {
+        for block in c.chunks_exact_mut(sh.len).take(sh.polys) {
+            f(block, d, alpha, gamma);
+        }
+    };
+    match (sh.m, sh.n) {
+        (3, 3) => square(c, restrict_square::<3, 16>),
+        (2, 2) => square(c, restrict_square::<2, 9>),
+        (1, 1) => square(c, restrict_square::<1, 4>),
+        _ => {
+            if alpha > 0.0 {
+                subdivide_all(c, sh, d, alpha, true);
+            }
+            if gamma < 1.0 {
+                subdivide_all(c, sh, d, gamma, false);
+            }
+        }
+    }
+}
+
+/// [`restrict_all`] on one `(K, K)` block: the lerps of
+/// [`subdivide_square`] at `α`, then at `γ`, so the same floats.
+#[inline(always)]
+fn restrict_square<const K: usize, const L: usize>(block: &mut [Iv], d: usize, alpha: f64, gamma: f64) {
+    let Ok(c) = <&mut [Iv; L]>::try_from(block) else {
+        unreachable!("a block holds (K + 1)² coefficients")
+    };
+    let cut = |c: &mut [Iv; L]| {
+        if alpha > 0.0 {
+            lerp_rows::<K, L>(c, alpha, true);
+        }
+        if gamma < 1.0 {
+            lerp_rows::<K, L>(c, gamma, false);
+        }
+    };
+    if d == 0 {
+        cut(c);
+    } else {
+        let mut tr = transpose::<K, L>(c);
+        cut(&mut tr);
+        *c = transpose::<K, L>(&tr);
+    }
 }
 
 /// Splits the node at [`SPLIT`] in direction `d`.
@@ -505,6 +548,31 @@ mod tests {
                 }
                 let want = with_small_degrees!(sh, |m, n| hull_spans_in(&net, Shape { m, n, ..sh }));
                 assert_eq!(hull_spans(&net, sh), want);
+            }
+        }
+    }
+
+    #[test]
+    fn square_restriction_gives_two_subdivisions() {
+        let mut rng = Rng(13);
+        for k in 1..=3 {
+            let sh = Shape::pair(k, k);
+            for _ in 0..50 {
+                let net = random_net(&mut rng, 2 * sh.len);
+                let (alpha, gamma) = (0.5 * rng.next_f64(), 0.5 + 0.5 * rng.next_f64());
+                for d in 0..2 {
+                    for (a, g) in [(alpha, gamma), (0.0, gamma), (alpha, 1.0)] {
+                        let (mut x, mut y) = (net.clone(), net.clone());
+                        restrict_all(&mut x, sh, d, a, g);
+                        if a > 0.0 {
+                            subdivide_all_in(&mut y, sh, d, a, true);
+                        }
+                        if g < 1.0 {
+                            subdivide_all_in(&mut y, sh, d, g, false);
+                        }
+                        assert_eq!(x, y, "k {k} d {d}");
+                    }
+                }
             }
         }
     }
