@@ -237,7 +237,7 @@ fn eval_box_square<const K: usize, const L: usize>(p: &[Iv], s: [f64; 2], t: [f6
         return eval_box_in(p, K, K, s, t);
     };
     let w = K + 1;
-    let mut tr: [Iv; L] = std::array::from_fn(|k| c[(k % w) * w + k / w]);
+    let mut tr = super::spans::transpose::<K, L>(c);
     for r in 1..w {
         for j in 0..w - r {
             for i in 0..w {

@@ -165,7 +165,12 @@ fn jet_square<const K: usize, const L: usize>(mid: &[f64], s: f64, t: f64) -> [f
         unreachable!("a polynomial holds (K + 1)² coefficients")
     };
     let w = K + 1;
-    let mut tr: [f64; L] = std::array::from_fn(|k| c[(k % w) * w + k / w]);
+    let mut tr = [0.0f64; L];
+    for i in 0..w {
+        for j in 0..w {
+            tr[j * w + i] = c[i * w + j];
+        }
+    }
     for r in 1..K {
         for j in 0..w - r {
             for i in 0..w {

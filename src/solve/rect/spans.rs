@@ -432,7 +432,14 @@ fn subdivide_square<const K: usize, const L: usize>(block: &mut [Iv], d: usize, 
 /// The `(K + 1) × (K + 1)` array transposed.
 #[inline(always)]
 pub(super) fn transpose<const K: usize, const L: usize>(c: &[Iv; L]) -> [Iv; L] {
-    std::array::from_fn(|k| c[(k % (K + 1)) * (K + 1) + k / (K + 1)])
+    let w = K + 1;
+    let mut tr = [Iv::point(0.0); L];
+    for i in 0..w {
+        for j in 0..w {
+            tr[j * w + i] = c[i * w + j];
+        }
+    }
+    tr
 }
 
 /// De Casteljau across the rows of a `(K + 1) × (K + 1)` array at `t`:
