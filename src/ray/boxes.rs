@@ -33,6 +33,14 @@ fn solver_query(opts: &RayOptions, d2: Iv, scale: f64) -> (Option<[f64; 2]>, Que
     (key_min, query)
 }
 
+/// `n · q_k` for four points at once: per lane the operations of the
+/// scalar `dot` (`Iv::mul`, `Iv::add`), so the same floats, written so that
+/// the compiler can run the four lanes side by side.
+#[inline(always)]
+fn dot4(n: &[Iv; 3], q: &[[Iv; 3]; 4]) -> [Iv; 4] {
+    std::array::from_fn(|k| n[0].mul(q[k][0]).add(n[1].mul(q[k][1])).add(n[2].mul(q[k][2])))
+}
+
 /// The tensor route through [`solve_rect`], in [`Iv`] arithmetic throughout:
 /// the reduction, the objective `h = (wP − w o)·d̃` (so `t = 2^s h / (w |d̃|²)`),
 /// and the `t` enclosures of the hits.
@@ -70,13 +78,23 @@ pub(super) fn intersect_rect(p: &TensorPatch, ray: &Ray, opts: &RayOptions) -> R
         Vec::with_capacity(len),
     );
     let weights = p.weights();
-    for hom in p.ivnet() {
-        // (wP − w o), from the homogeneous enclosures (w = 1 exactly for a
-        // polynomial patch).
-        let q: [Iv; 3] = match weights {
+    // (wP − w o), from the homogeneous enclosures (w = 1 exactly for a
+    // polynomial patch).
+    let q_of = |hom: &[Iv; 4]| -> [Iv; 3] {
+        match weights {
             None => std::array::from_fn(|c| hom[c].sub(Iv::point(o[c]))),
             Some(_) => std::array::from_fn(|c| hom[c].sub(hom[3].mul(Iv::point(o[c])))),
-        };
+        }
+    };
+    let mut quads = p.ivnet().chunks_exact(4);
+    for quad in &mut quads {
+        let q: [[Iv; 3]; 4] = std::array::from_fn(|k| q_of(&quad[k]));
+        for (out, n) in [(&mut f, &n1), (&mut g, &n2), (&mut h, &dt)] {
+            out.extend_from_slice(&dot4(n, &q));
+        }
+    }
+    for hom in quads.remainder() {
+        let q = q_of(hom);
         f.push(dot(&n1, &q));
         g.push(dot(&n2, &q));
         h.push(dot(&dt, &q));

@@ -114,7 +114,61 @@ impl Node {
 /// Hulls of `∂p/∂s` and `∂p/∂t` over the box, from the derivative's
 /// Bernstein coefficients.
 pub(super) fn jacobian_row(p: &[Iv], sh: Shape) -> [Iv; 2] {
-    with_small_degrees!(sh, |m, n| jacobian_row_in(p, m, n))
+    match (sh.m, sh.n) {
+        (3, 3) => jacobian_row_square::<3, 16>(p),
+        (2, 2) => jacobian_row_square::<2, 9>(p),
+        _ => with_small_degrees!(sh, |m, n| jacobian_row_in(p, m, n)),
+    }
+}
+
+/// [`jacobian_row_in`] for bidegree `(K, K)` (`L = (K + 1)²`) in a fixed
+/// array. The hulls take `<` selections instead of `f64::min`: with no NaN
+/// difference they pick the same float but for the sign of a zero, and
+/// `down(±0) = −ABS`, `up(±0) = ABS` either way; with one, the hull is NaN
+/// as before.
+#[inline(always)]
+fn jacobian_row_square<const K: usize, const L: usize>(p: &[Iv]) -> [Iv; 2] {
+    let Ok(c) = <&[Iv; L]>::try_from(p) else {
+        unreachable!("a polynomial holds (K + 1)² coefficients")
+    };
+    let w = K + 1;
+    let (mut s_lo, mut s_hi, mut t_lo, mut t_hi) = (
+        [f64::INFINITY; 4],
+        [f64::NEG_INFINITY; 4],
+        [f64::INFINITY; 4],
+        [f64::NEG_INFINITY; 4],
+    );
+    let mut nan = [false; 2];
+    for i in 0..w {
+        for j in 0..w {
+            let x = c[i * w + j];
+            if i < K {
+                let y = c[(i + 1) * w + j];
+                let (lo, hi) = (y.lo - x.hi, y.hi - x.lo);
+                nan[0] |= lo.is_nan() | hi.is_nan();
+                s_lo[j] = if lo < s_lo[j] { lo } else { s_lo[j] };
+                s_hi[j] = if hi > s_hi[j] { hi } else { s_hi[j] };
+            }
+            if j < K {
+                let y = c[i * w + j + 1];
+                let (lo, hi) = (y.lo - x.hi, y.hi - x.lo);
+                nan[1] |= lo.is_nan() | hi.is_nan();
+                t_lo[i] = if lo < t_lo[i] { lo } else { t_lo[i] };
+                t_hi[i] = if hi > t_hi[i] { hi } else { t_hi[i] };
+            }
+        }
+    }
+    let hull = |lo: [f64; 4], hi: [f64; 4], nan: bool| {
+        if nan {
+            return Iv::new(f64::NAN, f64::NAN);
+        }
+        let l = lo[..w].iter().fold(f64::INFINITY, |a, &b| if b < a { b } else { a });
+        let h = hi[..w]
+            .iter()
+            .fold(f64::NEG_INFINITY, |a, &b| if b > a { b } else { a });
+        Iv::new(down(l), up(h)).scale(K as f64)
+    };
+    [hull(s_lo, s_hi, nan[0]), hull(t_lo, t_hi, nan[1])]
 }
 
 #[inline(always)]
@@ -166,12 +220,47 @@ fn jacobian_row_in(p: &[Iv], m: usize, n: usize) -> [Iv; 2] {
 /// bidegree `(m, n)` over the local box `s × t` (any floats, extrapolation
 /// included), by de Casteljau with [`Iv::lerp_range`].
 pub(crate) fn eval_box(p: &[Iv], m: usize, n: usize, s: [f64; 2], t: [f64; 2]) -> Iv {
-    with_small_degrees!(Shape::pair(m, n), |m, n| eval_box_in(p, m, n, s, t))
+    match (m, n) {
+        (3, 3) => eval_box_square::<3, 16>(p, s, t),
+        (2, 2) => eval_box_square::<2, 9>(p, s, t),
+        _ => with_small_degrees!(Shape::pair(m, n), |m, n| eval_box_in(p, m, n, s, t)),
+    }
+}
+
+/// [`eval_box_in`] for bidegree `(K, K)` (`L = (K + 1)²`) in a fixed array:
+/// every row in `t` at once, as de Casteljau across the rows of the
+/// transposed net, then the column in `s`; the same operations, so the same
+/// floats.
+#[inline(always)]
+fn eval_box_square<const K: usize, const L: usize>(p: &[Iv], s: [f64; 2], t: [f64; 2]) -> Iv {
+    let Ok(c) = <&[Iv; L]>::try_from(p) else {
+        return eval_box_in(p, K, K, s, t);
+    };
+    let w = K + 1;
+    let mut tr = super::spans::transpose::<K, L>(c);
+    for r in 1..w {
+        for j in 0..w - r {
+            for i in 0..w {
+                tr[j * w + i] = lerp_range(tr[j * w + i], tr[(j + 1) * w + i], t[0], t[1]);
+            }
+        }
+    }
+    let col = &mut tr[..w];
+    for r in 1..w {
+        for i in 0..w - r {
+            col[i] = lerp_range(col[i], col[i + 1], s[0], s[1]);
+        }
+    }
+    col[0]
 }
 
 #[inline(always)]
 fn eval_box_in(p: &[Iv], m: usize, n: usize, s: [f64; 2], t: [f64; 2]) -> Iv {
-    if m < STACK && n < STACK {
+    if m < 4 && n < 4 {
+        let mut col = [Iv::point(0.0); 4];
+        let mut row = [Iv::point(0.0); 4];
+        eval_box_with(p, m, n, s, t, &mut col, &mut row)
+    } else if m < STACK && n < STACK {
         let mut col = [Iv::point(0.0); STACK];
         let mut row = [Iv::point(0.0); STACK];
         eval_box_with(p, m, n, s, t, &mut col, &mut row)
@@ -194,15 +283,64 @@ fn eval_box_with(p: &[Iv], m: usize, n: usize, s: [f64; 2], t: [f64; 2], col: &m
         row[..=n].copy_from_slice(line);
         for k in 1..=n {
             for j in 0..=n - k {
-                row[j] = Iv::lerp_range(row[j], row[j + 1], t[0], t[1]);
+                row[j] = lerp_range(row[j], row[j + 1], t[0], t[1]);
             }
         }
         col[i] = row[0];
     }
     for k in 1..=m {
         for i in 0..=m - k {
-            col[i] = Iv::lerp_range(col[i], col[i + 1], s[0], s[1]);
+            col[i] = lerp_range(col[i], col[i + 1], s[0], s[1]);
         }
     }
     col[0]
+}
+
+/// [`Iv::lerp_range`], inlined into the unrolled de Casteljau above (the
+/// same operations, so the same floats).
+#[inline(always)]
+fn lerp_range(a: Iv, b: Iv, t0: f64, t1: f64) -> Iv {
+    let unit = |t: f64| (0.0..=1.0).contains(&t);
+    if t0 == t1 {
+        return if unit(t0) {
+            Iv::lerp(a, b, t0)
+        } else {
+            Iv::lerp_any(a, b, t0)
+        };
+    }
+    let (x, y) = if unit(t0) && unit(t1) {
+        (Iv::lerp(a, b, t0), Iv::lerp(a, b, t1))
+    } else {
+        (Iv::lerp_any(a, b, t0), Iv::lerp_any(a, b, t1))
+    };
+    x.hull(y)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::Rng;
+
+    #[test]
+    fn square_jacobian_rows_and_box_values_give_the_general_floats() {
+        let mut rng = Rng(9);
+        for k in 2..=3usize {
+            for _ in 0..500 {
+                let p: Vec<Iv> = (0..(k + 1) * (k + 1))
+                    .map(|_| {
+                        let x = rng.next_signed();
+                        Iv::new(x, x + 1e-3 * rng.next_f64())
+                    })
+                    .collect();
+                assert_eq!(jacobian_row(&p, Shape::pair(k, k)), jacobian_row_in(&p, k, k));
+                for (s, t) in [
+                    ([0.25, 0.25], [0.5, 0.75]),
+                    ([0.1, 0.3], [0.6, 0.6]),
+                    ([-0.5, 0.5], [0.9, 1.5]),
+                ] {
+                    assert_eq!(eval_box(&p, k, k, s, t), eval_box_in(&p, k, k, s, t));
+                }
+            }
+        }
+    }
 }

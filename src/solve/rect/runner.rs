@@ -405,7 +405,7 @@ pub(crate) fn solve_rect_iv(p: RectProblem, opts: &RectOptions) -> Result<RectSo
         opts: *opts,
         scale: domain.map(|[lo, hi]| (hi.hi - lo.lo).next_up()),
         stats: Stats::default(),
-        trace: Vec::new(),
+        trace: Vec::with_capacity(64),
         found: Vec::new(),
         undecided: Vec::new(),
         problem: p,
@@ -463,7 +463,12 @@ impl Runner {
     }
 
     fn diameters(&self, mut id: u32) -> Vec<f64> {
-        let mut out = Vec::new();
+        let mut depth = 0;
+        let mut k = id;
+        while k != u32::MAX {
+            (depth, k) = (depth + 1, self.trace[k as usize].0);
+        }
+        let mut out = Vec::with_capacity(depth);
         while id != u32::MAX {
             let (parent, d) = self.trace[id as usize];
             out.push(d);
@@ -480,7 +485,8 @@ impl Runner {
 
     /// The main loop, depth first; returns the boxes a budget left.
     fn drive(&mut self, first: Node) -> Vec<Node> {
-        let mut queue = vec![first];
+        let mut queue = Vec::with_capacity(16);
+        queue.push(first);
         while let Some(node) = queue.pop() {
             if self.stopped_early {
                 break;
@@ -641,8 +647,16 @@ impl Runner {
         if area <= 0.5 {
             return Step::Continue(node);
         }
-        // Stalled: clip again with preconditioned equations (`rect` docs).
-        match preconditioned_spans(&node.c, sh) {
+        // Stalled: clip again with preconditioned equations (`rect` docs),
+        // once the box is in Krawczyk's range. Above it, where a stall is
+        // mostly two roots in one box, split at once.
+        let wc = self.rel_width(&node);
+        let pre = if wc[0].max(wc[1]) > KRAWCZYK_BELOW {
+            Some([(0.0, 1.0); 2])
+        } else {
+            preconditioned_spans(&node.c, sh)
+        };
+        match pre {
             None => {
                 self.stats.clip_exclusions += 1;
                 return Step::Done;
