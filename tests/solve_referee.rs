@@ -661,7 +661,7 @@ fn referee_round7_regressions() {
 #[test]
 fn triangle_box_route_settles_the_edges_exactly() {
     let p = |s: &str| parse_polynomial(s).unwrap();
-    let cases: [(&str, &str, Vec<(&str, &str)>); 6] = [
+    let cases = [
         ("u - 1/3", "u + v - 1", vec![("1/3", "2/3")]),
         (
             "(u - 1/3)*(u - 2/3)",

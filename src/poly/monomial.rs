@@ -31,6 +31,9 @@ pub const MAX_PRODUCT_TERMS: usize = 4_000_000;
 /// Most rational products an exact BB conversion may take (about a second).
 pub const MAX_CONVERSION_WORK: usize = 4_000_000;
 
+/// Terms `((a, b), numerator)` over a common denominator.
+type IntegerTerms = Vec<((u32, u32), BigInt)>;
+
 /// An exact polynomial `Σ c_ab u^a v^b` with rational coefficients. Zero
 /// coefficients are never stored, so equality is equality of polynomials.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -175,7 +178,7 @@ impl Polynomial {
     }
 
     /// `(D, [(key, D·c)])`: the terms over the lcm `D` of their denominators.
-    fn integer_terms(&self) -> (BigInt, Vec<((u32, u32), BigInt)>) {
+    fn integer_terms(&self) -> (BigInt, IntegerTerms) {
         let d = self
             .terms
             .values()

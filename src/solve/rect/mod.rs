@@ -70,11 +70,13 @@
 mod fatline;
 mod hybrid;
 mod net;
+mod options;
 mod proof;
 mod runner;
 mod spans;
 
 pub(crate) use net::eval_box;
 #[cfg_attr(not(feature = "internals"), allow(unused_imports))] // Objective, RectSolution: for tests.
-pub use runner::{solve_rect, Objective, Query, RectClip, RectOptions, RectSolution};
+pub use options::{Objective, Query, RectClip, RectOptions, RectSolution};
+pub use runner::solve_rect;
 pub(crate) use runner::{solve_rect_exact, solve_rect_iv, RectProblem, Squares};
