@@ -32,7 +32,7 @@ const SINGULAR_FLOOR: f64 = 1e-9;
 
 /// Stalled boxes narrower than this (relative) are tried by exact Krawczyk
 /// when the system is exact ([`RectProblem::exact`]).
-const EXACT_BELOW: f64 = 1e-4;
+const EXACT_BELOW: f64 = 1e-2;
 
 /// The relative width of the strip cut along an edge where both equations
 /// may vanish ([`Runner::cut_vanishing_edges`]): `2⁻³⁰`, so that `1 − EDGE_STRIP`

@@ -149,6 +149,10 @@ pub struct ExactSystem {
     /// `f` and `g` of the scaled system in power form, formed on first use
     /// (exact values at points; `None` if the conversion failed).
     power: std::sync::OnceLock<Option<[power::PowerForm; 2]>>,
+    /// The first derivatives in power form, formed on first use.
+    dpower: std::sync::OnceLock<Option<[[power::PowerForm; 2]; 2]>>,
+    /// The second derivatives in `f64` intervals, formed on first use.
+    float2: std::sync::OnceLock<[[[FPoly; 2]; 2]; 2]>,
 }
 
 /// [`ExactSystem`]'s polynomials with integer coefficients.
@@ -190,6 +194,8 @@ impl ExactSystem {
             d2f: std::sync::OnceLock::new(),
             float: std::sync::OnceLock::new(),
             power: std::sync::OnceLock::new(),
+            dpower: std::sync::OnceLock::new(),
+            float2: std::sync::OnceLock::new(),
         })
     }
 
@@ -556,12 +562,49 @@ impl ExactSystem {
             Some(p) => p[k].eval_at(x),
             None => eval_at(self.shape, &self.scaled().f[k], x),
         };
-        let (b, d) = (x[0].denom(), x[1].denom());
-        let den = match self.shape {
-            Shape::Tensor(m, n) => num_traits::pow(b.clone(), m) * num_traits::pow(d.clone(), n),
-            Shape::Triangle(n) => num_traits::pow(b * d, n),
+        Q::new(num, power_den(self.shape, x))
+    }
+
+    /// `∂f_k/∂x_d` exactly at the point `x` (power form; `None` if that
+    /// failed).
+    fn deriv_at(&self, k: usize, d: usize, x: &[Q; 2]) -> Option<Q> {
+        let dp = self.dpower.get_or_init(|| {
+            let df = self.df();
+            let one = |p: &Poly| power::PowerForm::new(p.shape(), p.coeffs());
+            Some([
+                [one(&df[0][0])?, one(&df[0][1])?],
+                [one(&df[1][0])?, one(&df[1][1])?],
+            ])
+        });
+        Some(power_value(&dp.as_ref()?[k][d], self.df()[k][d].shape(), x))
+    }
+
+    /// The Jacobian over the box `x` by the centred form `F'(m) +
+    /// F''(X)·(X − m)` about its centre `m`: `F'(m)` exact (power form),
+    /// `F''(X)` the hull of its coefficients on a piece holding `X` in `f64`
+    /// intervals rounded outward ([`FPoly::hull_over`]). `O(mn)` big-integer
+    /// and `O(mn(m + n))` float operations, where the exact enclosure takes
+    /// `O(mn(m + n))` rational ones; its excess is `F''`'s rounding times
+    /// the width, far below `|F'|` on the small boxes this is for. `None`
+    /// where a bound is not finite.
+    fn jacobian_centred(&self, x: &[RI; 2]) -> Option<[[RI; 2]; 2]> {
+        let two = Q::from_integer(2.into());
+        let m = [0, 1].map(|e| (&x[e].lo + &x[e].hi) / &two);
+        let dx = [x[0].sub_point(&m[0]), x[1].sub_point(&m[1])];
+        let xf = [hull(&x[0]), hull(&x[1])];
+        let f2 = self.float2.get_or_init(|| self.d2f().clone().map(|r| r.map(|e| e.map(|p| FPoly::of(&p)))));
+        let entry = |k: usize, d: usize| -> Option<RI> {
+            let mut acc = RI::point(self.deriv_at(k, d, &m)?);
+            for (e, dxe) in dx.iter().enumerate() {
+                let h = f2[k][d][e].hull_over([xf[0].inf(), xf[0].sup()], [xf[1].inf(), xf[1].sup()]);
+                if !(h.inf().is_finite() && h.sup().is_finite()) {
+                    return None;
+                }
+                acc = acc.add(&exact_iv(h)?.mul(dxe));
+            }
+            Some(acc)
         };
-        Q::new(num, den)
+        Some([[entry(0, 0)?, entry(0, 1)?], [entry(1, 0)?, entry(1, 1)?]])
     }
 }
 
@@ -596,6 +639,22 @@ impl RationalSystem for Fast<'_> {
     }
 }
 
+/// `p(x)` exactly from its power form (`shape` is `p`'s).
+fn power_value(p: &power::PowerForm, shape: Shape, x: &[Q; 2]) -> Q {
+    Q::new(p.eval_at(x), power_den(shape, x))
+}
+
+/// The denominator of the homogeneous evaluations at `x` (`eval_at`,
+/// [`power::PowerForm::eval_at`]): `b^m d^n` on the square, `(bd)^n` on the
+/// triangle, for `x = (a/b, c/d)`.
+fn power_den(shape: Shape, x: &[Q; 2]) -> num_bigint::BigInt {
+    let (b, d) = (x[0].denom(), x[1].denom());
+    match shape {
+        Shape::Tensor(m, n) => num_traits::pow(b.clone(), m) * num_traits::pow(d.clone(), n),
+        Shape::Triangle(n) => num_traits::pow(b * d, n),
+    }
+}
+
 /// Every entry's width is below a thousandth of its row's largest magnitude
 /// (then rounding costs Krawczyk's contraction little, and the exact retry
 /// would not do better).
@@ -626,10 +685,23 @@ impl RationalSystem for ExactSystem {
     /// size: roots of a product of many lines, a few hundredths apart) the
     /// direct enclosure is about `n·max|c|·w` wide, which swamps `|∇f|`
     /// unless `w` is tiny; the centred form's excess is of order `w²`.
+    ///
+    /// First, cheaply, the centred form with `F''` in `f64`
+    /// ([`ExactSystem::jacobian_centred`]), kept if tight; at a point, the
+    /// exact value by power form.
     fn jacobian(&self, x: &[RI; 2]) -> [[RI; 2]; 2] {
         let is_point = x.iter().all(|c| c.lo == c.hi);
         if is_point {
-            return [0, 1].map(|k| [0, 1].map(|d| self.df()[k][d].enclose(x)));
+            let p = [x[0].lo.clone(), x[1].lo.clone()];
+            return [0, 1].map(|k| {
+                [0, 1].map(|d| match self.deriv_at(k, d, &p) {
+                    Some(v) => RI::point(v),
+                    None => self.df()[k][d].enclose(x),
+                })
+            });
+        }
+        if let Some(j) = self.jacobian_centred(x).filter(tight) {
+            return j;
         }
         let two = Q::from_integer(2.into());
         let m = [0, 1].map(|e| (&x[e].lo + &x[e].hi) / &two);
