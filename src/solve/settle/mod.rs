@@ -571,10 +571,7 @@ impl ExactSystem {
         let dp = self.dpower.get_or_init(|| {
             let df = self.df();
             let one = |p: &Poly| power::PowerForm::new(p.shape(), p.coeffs());
-            Some([
-                [one(&df[0][0])?, one(&df[0][1])?],
-                [one(&df[1][0])?, one(&df[1][1])?],
-            ])
+            Some([[one(&df[0][0])?, one(&df[0][1])?], [one(&df[1][0])?, one(&df[1][1])?]])
         });
         Some(power_value(&dp.as_ref()?[k][d], self.df()[k][d].shape(), x))
     }
@@ -592,7 +589,9 @@ impl ExactSystem {
         let m = [0, 1].map(|e| (&x[e].lo + &x[e].hi) / &two);
         let dx = [x[0].sub_point(&m[0]), x[1].sub_point(&m[1])];
         let xf = [hull(&x[0]), hull(&x[1])];
-        let f2 = self.float2.get_or_init(|| self.d2f().clone().map(|r| r.map(|e| e.map(|p| FPoly::of(&p)))));
+        let f2 = self
+            .float2
+            .get_or_init(|| self.d2f().clone().map(|r| r.map(|e| e.map(|p| FPoly::of(&p)))));
         let entry = |k: usize, d: usize| -> Option<RI> {
             let mut acc = RI::point(self.deriv_at(k, d, &m)?);
             for (e, dxe) in dx.iter().enumerate() {
