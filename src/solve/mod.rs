@@ -372,14 +372,7 @@ fn triangle_by_boxes(
     }
     let ((m, n), (p, q)) = (pf.degrees(), pg.degrees());
     let (dm, dn) = ((m.max(p) as usize).max(1), (n.max(q) as usize).max(1));
-    let (tf, tg) = (pf.to_square().elevate(dm, dn)?, pg.to_square().elevate(dm, dn)?);
-    let (tf, tg) = (tf.map_coeffs(scaler(tf.coeffs())), tg.map_coeffs(scaler(tg.coeffs())));
-    let boxes = settle::ExactSystem::new(
-        settle::Shape::Tensor(dm, dn),
-        tf.coeffs().to_vec(),
-        tg.coeffs().to_vec(),
-        None,
-    )?;
+    let (tf, tg, boxes) = scaled_tensor_system(pf.to_square().elevate(dm, dn)?, pg.to_square().elevate(dm, dn)?)?;
     let enclose = |q: &BigRational| Interval::from_rational(q);
     let sol = rect::solve_rect_exact(
         &tf.map(enclose),
@@ -414,13 +407,7 @@ fn solve_exact_square(
 ) -> Result<Solution> {
     let enclose = |q: &BigRational| Interval::from_rational(q);
     let (dm, dn) = ef.degree();
-    let (ef, eg) = (ef.map_coeffs(scaler(ef.coeffs())), eg.map_coeffs(scaler(eg.coeffs())));
-    let sys = settle::ExactSystem::new(
-        settle::Shape::Tensor(dm, dn),
-        ef.coeffs().to_vec(),
-        eg.coeffs().to_vec(),
-        None,
-    )?;
+    let (ef, eg, sys) = scaled_tensor_system(ef, eg)?;
     if opts.square_route != SquareRoute::Triangles {
         let ropts = rect_options(opts);
         let sol = rect::solve_rect_exact(
@@ -457,6 +444,27 @@ fn solve_exact_square(
         return Ok(sol);
     }
     solve_exact_square_triangles(&ef, &eg, &sys, opts)
+}
+
+/// `f`, `g` (one bidegree) each scaled by a power of two ([`scaler`]), and
+/// their exact system.
+fn scaled_tensor_system(
+    ef: TensorBezier<BigRational>,
+    eg: TensorBezier<BigRational>,
+) -> Result<(
+    TensorBezier<BigRational>,
+    TensorBezier<BigRational>,
+    settle::ExactSystem,
+)> {
+    let (m, n) = ef.degree();
+    let (ef, eg) = (ef.map_coeffs(scaler(ef.coeffs())), eg.map_coeffs(scaler(eg.coeffs())));
+    let sys = settle::ExactSystem::new(
+        settle::Shape::Tensor(m, n),
+        ef.coeffs().to_vec(),
+        eg.coeffs().to_vec(),
+        None,
+    )?;
+    Ok((ef, eg, sys))
 }
 
 /// Bidegrees `m + n` up to which a box-route answer with undecided regions

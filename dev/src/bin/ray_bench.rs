@@ -75,7 +75,10 @@ fn run(
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let n: usize = std::env::args().nth(1).map_or(Ok(10_000), |s| s.parse())?;
-    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/seed000_example1.json"))?;
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../tests/data/seed000_example1.json"
+    ))?;
     let v: serde_json::Value = serde_json::from_str(&text)?;
     let spec: PatchSpec =
         serde_json::from_value(v["patch"].clone()).map_err(|e| rootclip::Error::Format(e.to_string()))?;
