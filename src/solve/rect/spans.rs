@@ -5,6 +5,7 @@
 
 use super::net::{at, jacobian_row, one_signed, with_small_degrees, Node, Shape, SMALL_LEN, STACK};
 use crate::scalar::iv::{down, up, Iv};
+use crate::solve::envelope::zero_span_inline;
 use crate::solve::linalg::{inverse2, smallest_singular_left};
 
 /// The smallest ratio of a clipped box's sides ([`keep_aspect`]).
@@ -77,7 +78,7 @@ fn hull_spans_square<const K: usize, const L: usize>(c: &[Iv]) -> Option<[(f64, 
         for (d, (lo, hi)) in [(&rl, &rh), (&cl, &ch)].into_iter().enumerate() {
             let finite = lo[..w].iter().chain(&hi[..w]).all(|x| x.is_finite());
             let (a, b) = if ok && finite {
-                hull_crossings(&lo[..w], &hi[..w])?
+                zero_span_inline(&lo[..w], &hi[..w])?
             } else {
                 (0.0, 1.0)
             };
@@ -127,60 +128,7 @@ fn zero_span_with(p: &[Iv], sh: Shape, d: usize, lo: &mut [f64], hi: &mut [f64])
     if !ok {
         return Some((0.0, 1.0));
     }
-    hull_crossings(&lo[..=k], &hi[..=k])
-}
-
-/// The widened span `[a − 4·10⁻¹⁵, b + 4·10⁻¹⁵] ∩ [0, 1]`, `a` and `b` the
-/// smallest and largest abscissa `i/k` of a range containing 0 or crossing
-/// of a segment joining `(i/k, y_i)` and `(j/k, y_j)`, `y` an endpoint of
-/// its range, of opposite signs (`x_i + (x_j − x_i)·y_i/(y_i − y_j)`);
-/// `None` if there is none. With finite ranges every candidate is a number
-/// in `[0, 1]` and never `−0`, so `<` selections pick what `f64::min` would.
-/// The same floats as
-/// `envelope::zero_span_inline`: the same candidates (a pair whose four
-/// endpoints share a sign has none), and once `a ≤ 0 ≤ 1 ≤ b` no candidate
-/// changes the clamped result.
-#[inline(always)]
-fn hull_crossings(lo: &[f64], hi: &[f64]) -> Option<(f64, f64)> {
-    const MARGIN: f64 = 4e-15;
-    let k = lo.len() - 1;
-    if k == 0 {
-        return (lo[0] <= 0.0 && hi[0] >= 0.0).then_some((0.0, 1.0));
-    }
-    let kf = k as f64;
-    let (mut a, mut b) = (f64::INFINITY, f64::NEG_INFINITY);
-    for i in 0..=k {
-        if lo[i] <= 0.0 && hi[i] >= 0.0 {
-            let xi = i as f64 / kf;
-            a = least(a, xi);
-            b = most(b, xi);
-        }
-    }
-    if a <= 0.0 && b >= 1.0 {
-        return Some((0.0, 1.0));
-    }
-    for i in 0..k {
-        let xi = i as f64 / kf;
-        for j in i + 1..=k {
-            if (lo[i] >= 0.0 && lo[j] >= 0.0) || (hi[i] <= 0.0 && hi[j] <= 0.0) {
-                continue;
-            }
-            let xj = j as f64 / kf;
-            for yi in [lo[i], hi[i]] {
-                for yj in [lo[j], hi[j]] {
-                    if (yi < 0.0 && yj > 0.0) || (yi > 0.0 && yj < 0.0) {
-                        let x = xi + (xj - xi) * (yi / (yi - yj));
-                        a = least(a, x);
-                        b = most(b, x);
-                    }
-                }
-            }
-        }
-    }
-    if a > b {
-        return None;
-    }
-    Some(((a - MARGIN).max(0.0), (b + MARGIN).min(1.0)))
+    zero_span_inline(&lo[..=k], &hi[..=k])
 }
 
 /// Spans from equations that are combinations of `f` and `g` (every root of
@@ -247,26 +195,6 @@ fn preconditioned_spans_in(c: &[Iv], sh: Shape) -> Option<[(f64, f64); 2]> {
         }
     }
     Some(spans)
-}
-
-/// The smaller of two numbers (no NaN).
-#[inline(always)]
-fn least(a: f64, b: f64) -> f64 {
-    if b < a {
-        b
-    } else {
-        a
-    }
-}
-
-/// The larger of two numbers (no NaN).
-#[inline(always)]
-fn most(a: f64, b: f64) -> f64 {
-    if b > a {
-        b
-    } else {
-        a
-    }
 }
 
 /// `Iv::point(a).mul(x)` with its two distinct products only (the same
@@ -580,19 +508,6 @@ mod tests {
                         assert_eq!(x, y, "k {k} d {d}");
                     }
                 }
-            }
-        }
-    }
-
-    #[test]
-    fn hull_crossings_give_the_envelope_floats() {
-        let mut rng = Rng(11);
-        for k in 0..=5 {
-            for _ in 0..2000 {
-                let lo: Vec<f64> = (0..=k).map(|_| rng.next_signed()).collect();
-                let hi: Vec<f64> = lo.iter().map(|x| x + 0.3 * rng.next_f64()).collect();
-                let want = crate::solve::envelope::zero_span_inline(&lo, &hi);
-                assert_eq!(hull_crossings(&lo, &hi), want, "{lo:?} {hi:?}");
             }
         }
     }
