@@ -82,6 +82,13 @@ def systems():
     out.append(("pencil10@(0,1/2) x 2 verticals, triangle", "triangle", pencil, [(1, 0, F(-1, 5)), (1, 0, F(-2, 5))], []))
     pencil2 = [(F(k - 5, 10) + F(1, 20), -1, F(1, 2) - (F(k - 5, 10) + F(1, 20))) for k in range(10)]  # through (1, 1/2)
     out.append(("pencil10@(0,1/2) x pencil10@(1,1/2), square", "square", pencil, pencil2, []))
+    v30 = [(1, 0, F(-i, 31)) for i in range(1, 31)]
+    h30 = [(0, 1, F(-j, 31)) for j in range(1, 31)]
+    out.append(("grid30x30/31 square", "square", v30, h30, []))
+    out.append(("grid30x30/31 triangle", "triangle", v30, h30, []))
+    rl3, rl4 = random_lines(30, 3), random_lines(30, 4)
+    out.append(("random30x30 square", "square", rl3, rl4, []))
+    out.append(("random30x30 triangle", "triangle", rl3, rl4, []))
     return out
 
 POLYS = [

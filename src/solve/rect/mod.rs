@@ -72,6 +72,7 @@ mod hybrid;
 mod net;
 mod options;
 mod proof;
+mod restart;
 mod runner;
 mod spans;
 

@@ -99,6 +99,10 @@ pub(super) struct Node {
     /// or an ancestor (`∞` if never tried): tried again only on boxes a
     /// quarter as wide.
     pub(super) exact_w: f64,
+    /// The box's larger relative width when it or an ancestor was last
+    /// restarted from the exact input (`∞` if never): restarted again only
+    /// once a quarter as wide.
+    pub(super) restart_w: f64,
 }
 
 impl Node {

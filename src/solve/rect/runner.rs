@@ -6,6 +6,7 @@ use super::hybrid::hybrid_spans;
 use super::net::{edge_indices, eval_box, one_signed, Node, Shape};
 use super::options::{Objective, Query, RectClip, RectOptions, RectSolution};
 use super::proof::{local_krawczyk, sign_lost};
+use super::restart::DdSystem;
 use super::spans::{clip, hull_spans, keep_aspect, preconditioned_spans, split};
 use crate::error::{Error, Result};
 use crate::poly::TensorBezier;
@@ -31,8 +32,13 @@ const REPORT_BELOW: f64 = 1e-12;
 const SINGULAR_FLOOR: f64 = 1e-9;
 
 /// Stalled boxes narrower than this (relative) are tried by exact Krawczyk
-/// when the system is exact ([`RectProblem::exact`]).
+/// when the system is exact ([`RectProblem::exact`]) and the box's
+/// coefficients are [`NOISY`].
 const EXACT_BELOW: f64 = 1e-2;
+
+/// Stalled boxes narrower than this (relative) whose coefficients are not
+/// [`NOISY`] are tried by exact Krawczyk.
+const EXACT_CLEAN_BELOW: f64 = 1e-4;
 
 /// The relative width of the strip cut along an edge where both equations
 /// may vanish ([`Runner::cut_vanishing_edges`]): `2⁻³⁰`, so that `1 − EDGE_STRIP`
@@ -42,6 +48,11 @@ const EDGE_STRIP: f64 = 1.0 / (1u64 << 30) as f64;
 /// Stalled boxes below this (relative) size whose separating sign is lost
 /// to rounding are leaves ([`sign_lost`]).
 const LOST_BELOW: f64 = 1e-3;
+
+/// A stalled box is restarted from the exact input when the widths of an
+/// equation's coefficients exceed this fraction of their largest magnitude
+/// ([`Runner::restart`]).
+const NOISY: f64 = 1e-6;
 
 /// Coefficients beyond this magnitude are rejected (keeps every difference
 /// of two coefficients finite, which the hull crossings rely on).
@@ -300,10 +311,12 @@ pub(crate) fn solve_rect_iv(p: RectProblem, opts: &RectOptions) -> Result<RectSo
         },
         stopped_early: false,
         edge_strips: Vec::new(),
+        restarts: None,
     };
     let mut first = Node {
         key: None,
         exact_w: f64::INFINITY,
+        restart_w: f64::INFINITY,
         c: buf,
         bx: domain,
         id: run.push_trace(u32::MAX, domain.map(|[lo, hi]| [lo.lo, hi.hi])),
@@ -331,6 +344,9 @@ struct Runner {
     stopped_early: bool,
     /// Strips cut along edges where both equations may vanish.
     edge_strips: Vec<IBox>,
+    /// The exact system in double-double, built on the first restart
+    /// (`Some(None)` if it cannot be).
+    restarts: Option<Option<DdSystem>>,
 }
 
 enum Step {
@@ -559,7 +575,17 @@ impl Runner {
             }
         }
         let w = self.rel_width(&node);
-        if w[0].max(w[1]) < EXACT_BELOW && 4.0 * w[0].max(w[1]) <= node.exact_w {
+        let noisy = self.noisy(&node);
+        if noisy && 4.0 * w[0].max(w[1]) <= node.restart_w {
+            if let Some(fresh) = self.restart(&node) {
+                return Step::Continue(fresh);
+            }
+            node.restart_w = w[0].max(w[1]);
+        }
+        // Rounding stalls a box at any size, two close roots only a wide
+        // one: a clean box is tried exactly only once it is small.
+        let below = if noisy { EXACT_BELOW } else { EXACT_CLEAN_BELOW };
+        if w[0].max(w[1]) < below && 4.0 * w[0].max(w[1]) <= node.exact_w {
             if let Some(done) = self.try_exact(&node) {
                 return done;
             }
@@ -697,6 +723,53 @@ impl Runner {
                 self.edge_strips.push(strip);
             }
         }
+    }
+
+    /// Whether rounding has swamped the node's coefficients: some equation's
+    /// widths exceed [`NOISY`] of its largest magnitude.
+    fn noisy(&self, node: &Node) -> bool {
+        let sh = self.shape;
+        node.c.chunks_exact(sh.len).take(2).any(|c| {
+            let (mut wid, mut mag) = (0.0f64, 0.0f64);
+            for x in c {
+                wid = wid.max(x.hi - x.lo);
+                mag = mag.max(x.lo.abs().max(x.hi.abs()));
+            }
+            wid > NOISY * mag
+        })
+    }
+
+    /// The node recomputed from the exact input ([`DdSystem::restrict`]):
+    /// its coefficients on a box holding it (its outer box, up to the
+    /// rounding of a clip), each within a few ulps of its own magnitude
+    /// where the node's had the rounding of the domain's. `None` without an
+    /// exact system, or where the recomputed node is as noisy.
+    fn restart(&mut self, node: &Node) -> Option<Node> {
+        if self.restarts.is_none() {
+            let dd = self.problem.exact.as_ref().and_then(|sys| {
+                let (m, n, [f, g]) = sys.tensor_input()?;
+                DdSystem::new(m, n, f, g)
+            });
+            self.restarts = Some(dd);
+        }
+        let dd = self.restarts.as_ref()?.as_ref()?;
+        let (c, bx) = dd.restrict(self.shape, node.outer())?;
+        let mut fresh = Node {
+            c,
+            bx,
+            id: node.id,
+            key: None,
+            exact_w: node.exact_w,
+            restart_w: 0.0,
+        };
+        if self.noisy(&fresh) {
+            return None;
+        }
+        let w = self.rel_width(&fresh);
+        fresh.restart_w = w[0].max(w[1]);
+        fresh.id = self.push_trace(node.id, fresh.outer());
+        self.stats.exact_restarts += 1;
+        Some(fresh)
     }
 
     /// A stalled box tried by exact Krawczyk (exact input only):

@@ -199,6 +199,15 @@ impl ExactSystem {
         })
     }
 
+    /// `f` and `g` as given, with their bidegree, if the system is on the
+    /// square (for restarts of the box solver).
+    pub(crate) fn tensor_input(&self) -> Option<(usize, usize, [&[Q]; 2])> {
+        match self.shape {
+            Shape::Tensor(m, n) => Some((m, n, [&self.input.0[0], &self.input.0[1]])),
+            Shape::Triangle(_) => None,
+        }
+    }
+
     /// The system with integer coefficients.
     fn scaled(&self) -> &Scaled {
         self.scaled.get_or_init(|| Scaled {
