@@ -55,7 +55,7 @@ pub fn subdivide_dyadic(p: &TriBezier<BigRational>, verts: &[[f64; 2]; 3]) -> Op
 }
 
 /// `x = m / 2^k` with integer `m` (`k` may be negative).
-fn dyadic(x: f64) -> Option<(BigInt, i64)> {
+pub(crate) fn dyadic(x: f64) -> Option<(BigInt, i64)> {
     if !x.is_finite() {
         return None;
     }

@@ -201,7 +201,8 @@ pub struct Stats {
     pub compensated_restarts: usize,
     /// Tri-boxes whose polynomials were computed in compensated arithmetic.
     pub compensated_boxes: usize,
-    /// Stalled tri-boxes recomputed from the exact input.
+    /// Stalled tri-boxes recomputed from the exact input, and boxes swamped
+    /// by rounding recomputed from it in higher precision.
     pub exact_restarts: usize,
     /// Tri-boxes whose polynomials were computed from the exact input.
     pub exact_boxes: usize,

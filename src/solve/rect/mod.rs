@@ -49,6 +49,19 @@
 //! exactly it — while its endpoints in the domain are known as intervals
 //! (`a + (b − a)·α` is not a float). Reported boxes use the outer endpoints.
 //!
+//! # Restarts (exact input)
+//! Every box's coefficients descend from the domain's and carry their
+//! rounding, a few ulps of the domain's largest coefficient. Where the
+//! system is far smaller than that (between the middle roots of a product
+//! of 30 lines, near a point where one equation vanishes to order 20) the
+//! rounding swamps the box: its widths exceed `10⁻⁶` of its magnitudes, and
+//! every clip stalls. Such a stalled box is recomputed from the exact input
+//! on a box holding it (`restart.rs`): in double-double, or in fixed point
+//! on big integers of growing precision, until its widths are within
+//! `10⁻¹²` of its magnitudes; again only once a quarter as wide. A clean
+//! stalled box (two close roots, not rounding) is tried by exact Krawczyk
+//! only below `10⁻⁴`, a swamped one that no restart cleared below `10⁻²`.
+//!
 //! # Leaves
 //! A box narrower than `eps` that Krawczyk could not settle in its interior
 //! (a root on a split line or on the domain's boundary, or a multiple root)
@@ -61,7 +74,10 @@
 //! float outward), certification of leaves uses inari.
 //!
 //! # Layout
-//! `runner.rs` holds the options, the entry points and the loop over boxes;
+//! `runner.rs` holds the entry points and the loop over boxes (and, in
+//! `runner/stalled.rs`, its steps that use the exact input); `options.rs`
+//! the options and results; `restart.rs` the exact input in higher
+//! precisions;
 //! `net.rs` a box and its coefficients; `proof.rs` step 3 (the operator
 //! itself is `krawczyk::local`) and the lost-sign test; `spans.rs` step 4
 //! with Bézier hulls and the clips and splits of step 5; `fatline.rs` and

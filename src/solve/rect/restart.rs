@@ -33,13 +33,32 @@
 //! and `10⁻³⁰⁰` every underflow of a step (at most ten roundings of at most
 //! `2⁻¹⁰⁷⁴` each). The box's `f64` intervals are `h ± (|l| + R)` rounded
 //! outward.
+//!
+//! # Beyond double-double
+//! Where even `10⁻²⁹ M₀` swamps the box (near a point where one equation
+//! vanishes to order 20, its values fall to `10⁻³⁰ M₀` within a few
+//! hundredths), the same two subdivisions run in fixed point on big
+//! integers ([`BigSystem`]): values `X·2⁻ˢ` with `|X| < 2^P`, a step
+//! `X' = X + ⌊T (Y − X) / 2ᵏ⌋` for `τ = T/2ᵏ` (floats are dyadic). Each
+//! floor errs by less than one unit, errors pass through the convex
+//! combination without growing, so after at most `2 (m + n)` steps and the
+//! input's own floor the error is below `2 (m + n) + 1` units. `P` starts
+//! at 192 bits and doubles, up to [`MAX_BITS`], until the box's largest
+//! coefficient is `2⁵²` times that bound. A restart is taken in the first
+//! precision whose widths are within [`CLEAN`] of the box's magnitudes.
 
 use super::net::Shape;
+use crate::poly::dyadic::dyadic;
 use crate::scalar::eft::{two_prod, two_sum, Dd};
 use crate::scalar::iv::{self, Iv};
 use crate::scalar::{rational_to_f64, rational_to_interval};
+use num_bigint::BigInt;
+use num_integer::Integer;
 use num_rational::BigRational;
-use num_traits::Zero;
+use num_traits::{ToPrimitive, Zero};
+
+/// A box's endpoints per direction, each an enclosure.
+type Ends = [[Iv; 2]; 2];
 
 /// The unit roundoff `2⁻⁵³`.
 const U: f64 = f64::EPSILON / 2.0;
@@ -113,27 +132,11 @@ impl DdSystem {
     /// intervals in the layout of [`Shape::pair`], and that box's endpoints
     /// (enclosures of the exact ones). `None` if `outer` does not meet the
     /// square or the shape differs.
-    pub(super) fn restrict(&self, sh: Shape, outer: [[f64; 2]; 2]) -> Option<(Vec<Iv>, [[Iv; 2]; 2])> {
+    pub(super) fn restrict(&self, sh: Shape, outer: [[f64; 2]; 2]) -> Option<(Vec<Iv>, Ends)> {
         if (sh.m, sh.n) != (self.m, self.n) || sh.polys < 2 {
             return None;
         }
-        let mut params = [(0.0, 1.0); 2];
-        let mut bx = [[Iv::point(0.0), Iv::point(1.0)]; 2];
-        for d in 0..2 {
-            let (lo, hi) = (outer[d][0].max(0.0), outer[d][1].min(1.0));
-            if !(lo < hi) {
-                return None;
-            }
-            // As `spans::clip`: [α, α + (1 − α)γ] ⊇ [lo, hi].
-            let gamma = if hi >= 1.0 {
-                1.0
-            } else {
-                ((hi - lo).next_up() / (1.0 - lo).next_down()).next_up().min(1.0)
-            };
-            params[d] = (lo, gamma);
-            let a = Iv::point(lo);
-            bx[d] = [a, if gamma < 1.0 { Iv::lerp(a, Iv::point(1.0), gamma) } else { Iv::point(1.0) }];
-        }
+        let (params, bx) = restart_box(outer)?;
         let steps = (2 * (self.m + self.n)) as f64;
         let mut out = Vec::with_capacity(sh.polys * sh.len);
         for p in &self.polys {
@@ -151,6 +154,250 @@ impl DdSystem {
         out.resize(sh.polys * sh.len, Iv::point(0.0));
         out.iter().all(|x| x.is_finite()).then_some((out, bx))
     }
+}
+
+/// Fixed-point precision of [`BigSystem`]'s first try, and its limit (bits).
+const FIRST_BITS: u64 = 192;
+const MAX_BITS: u64 = 3072;
+
+/// A node is swamped by rounding when the widths of an equation's
+/// coefficients exceed this fraction of their largest magnitude.
+pub(super) const NOISY: f64 = 1e-6;
+
+/// A restart is taken when every equation's widths are at most this
+/// fraction of its largest magnitude (so that the float steps after it have
+/// room before the node is [`NOISY`] again); otherwise the next precision
+/// is tried.
+const CLEAN: f64 = 1e-12;
+
+/// Whether rounding has swamped the coefficients `c` (`sh`'s layout): some
+/// equation's widths exceed [`NOISY`] of its largest magnitude.
+pub(super) fn swamped(c: &[Iv], sh: Shape) -> bool {
+    !within(c, sh, NOISY)
+}
+
+/// Whether every equation's widths in `c` are at most `rel` of its largest
+/// magnitude.
+fn within(c: &[Iv], sh: Shape, rel: f64) -> bool {
+    c.chunks_exact(sh.len).take(2).all(|c| {
+        let (mut wid, mut mag) = (0.0f64, 0.0f64);
+        for x in c {
+            wid = wid.max(x.hi - x.lo);
+            mag = mag.max(x.lo.abs().max(x.hi.abs()));
+        }
+        wid <= rel * mag
+    })
+}
+
+/// The sources of restarts for one exact system, each built on first use:
+/// double-double first, then fixed point of growing precision.
+#[derive(Debug)]
+pub(super) struct Restarts {
+    m: usize,
+    n: usize,
+    input: [Vec<BigRational>; 2],
+    dd: Option<Option<DdSystem>>,
+    big: Vec<BigSystem>,
+}
+
+impl Restarts {
+    /// For `f`, `g` of bidegree `(m, n)` on the unit square (row-major).
+    pub(super) fn new(m: usize, n: usize, f: &[BigRational], g: &[BigRational]) -> Self {
+        Self {
+            m,
+            n,
+            input: [f.to_vec(), g.to_vec()],
+            dd: None,
+            big: Vec::new(),
+        }
+    }
+
+    /// The coefficients on a box holding `outer` and the box (as
+    /// [`DdSystem::restrict`]) in the cheapest precision that leaves their
+    /// widths within [`CLEAN`] of their magnitudes; `None` if none up to
+    /// [`MAX_BITS`] does, or for another shape.
+    pub(super) fn restrict(&mut self, sh: Shape, outer: [[f64; 2]; 2]) -> Option<(Vec<Iv>, Ends)> {
+        if (sh.m, sh.n) != (self.m, self.n) || sh.polys < 2 {
+            return None;
+        }
+        let (m, n, [f, g]) = (self.m, self.n, &self.input);
+        let dd = self.dd.get_or_insert_with(|| DdSystem::new(m, n, f, g));
+        if let Some(fresh) = dd.as_ref().and_then(|dd| dd.restrict(sh, outer)) {
+            if within(&fresh.0, sh, CLEAN) {
+                return Some(fresh);
+            }
+        }
+        let mut bits = FIRST_BITS;
+        let mut level = 0;
+        while bits <= MAX_BITS {
+            if self.big.len() == level {
+                self.big.push(BigSystem::new(m, n, f, g, bits)?);
+            }
+            if let Some(fresh) = self.big[level].restrict(sh, outer) {
+                if within(&fresh.0, sh, CLEAN) {
+                    return Some(fresh);
+                }
+            }
+            (bits, level) = (2 * bits, level + 1);
+        }
+        None
+    }
+}
+
+/// `f` and `g` on the unit square in fixed point on big integers (module
+/// docs): each polynomial `p` as `X_i = ⌊p_i · 2^s⌋` for `s` with
+/// `max |X_i| ≈ 2^bits`.
+#[derive(Clone, Debug)]
+pub(super) struct BigSystem {
+    m: usize,
+    n: usize,
+    polys: [Vec<BigInt>; 2],
+}
+
+impl BigSystem {
+    /// `f` and `g` (bidegree `(m, n)`, row-major) with `bits` bits; `None`
+    /// if either vanishes identically or on a length mismatch.
+    pub(super) fn new(m: usize, n: usize, f: &[BigRational], g: &[BigRational], bits: u64) -> Option<Self> {
+        let len = (m + 1) * (n + 1);
+        if f.len() != len || g.len() != len {
+            return None;
+        }
+        let fixed = |c: &[BigRational]| -> Option<Vec<BigInt>> {
+            let size = |q: &BigRational| q.numer().bits() as i64 - q.denom().bits() as i64;
+            let e = c.iter().filter(|q| !q.is_zero()).map(size).max()?;
+            let s = bits as i64 - e;
+            Some(
+                c.iter()
+                    .map(|q| {
+                        let (num, den) = if s >= 0 {
+                            (q.numer() << s as usize, q.denom().clone())
+                        } else {
+                            (q.numer().clone(), q.denom() << (-s) as usize)
+                        };
+                        num.div_floor(&den)
+                    })
+                    .collect(),
+            )
+        };
+        Some(Self {
+            m,
+            n,
+            polys: [fixed(f)?, fixed(g)?],
+        })
+    }
+
+    /// As [`DdSystem::restrict`], in fixed point; `None` also where the
+    /// box's largest coefficient is not 2⁵² times the error bound.
+    pub(super) fn restrict(&self, sh: Shape, outer: [[f64; 2]; 2]) -> Option<(Vec<Iv>, Ends)> {
+        if (sh.m, sh.n) != (self.m, self.n) || sh.polys < 2 {
+            return None;
+        }
+        let (params, bx) = restart_box(outer)?;
+        let steps = 2 * (self.m + self.n) as u64 + 1;
+        let mut out = Vec::with_capacity(sh.polys * sh.len);
+        for p in &self.polys {
+            let mut c = p.clone();
+            for (d, &(alpha, gamma)) in params.iter().enumerate() {
+                restrict_fixed(&mut c, self.m, self.n, d, alpha, gamma)?;
+            }
+            // X ± E in units, shifted so the largest has 53 bits: exact
+            // floats. Fewer than 52 bits above E: not enough precision.
+            let e = BigInt::from(steps);
+            let top = c.iter().map(|x| x.bits()).max().unwrap_or(0);
+            if top < e.bits() + 52 {
+                return None;
+            }
+            let shift = (top - 53) as usize;
+            let to_f64 = |x: BigInt| x.to_i64().map(|v| v as f64);
+            let scale = 2f64.powi(-53);
+            for x in &c {
+                let lo = to_f64((x - &e) >> shift)?;
+                let hi = to_f64(((x + &e) >> shift) + 1)?;
+                out.push(Iv::new(lo * scale, hi * scale));
+            }
+        }
+        out.resize(sh.polys * sh.len, Iv::point(0.0));
+        Some((out, bx))
+    }
+}
+
+/// The net `c` (bidegree `(m, n)`, row-major, fixed point) restricted in
+/// direction `d` to `[α, 1]` and then to the first `γ` of that, each step
+/// `X + ⌊T (Y − X) / 2ᵏ⌋` (module docs). `None` for a non-finite parameter.
+fn restrict_fixed(c: &mut [BigInt], m: usize, n: usize, d: usize, alpha: f64, gamma: f64) -> Option<()> {
+    let w = n + 1;
+    let k = if d == 0 { m } else { n };
+    let (count, stride, step) = if d == 0 { (w, w, 1) } else { (m + 1, 1, w) };
+    let at = |line: usize, i: usize| line * step + i * stride;
+    let lerp = |c: &mut [BigInt], a: usize, b: usize, into: usize, (t, sh): &(BigInt, usize)| {
+        let mut z = &c[b] - &c[a];
+        z *= t;
+        z >>= *sh;
+        c[into] = &c[a] + z;
+    };
+    let frac = |x: f64| -> Option<(BigInt, usize)> {
+        let (t, e) = dyadic(x)?;
+        // τ ∈ (0, 1): e ≥ 0 except for τ = 1 = 2⁵²·2⁻⁵², handled by callers.
+        Some(if e >= 0 {
+            (t, e as usize)
+        } else {
+            (t << (-e) as usize, 0)
+        })
+    };
+    if alpha > 0.0 {
+        let t = frac(alpha)?;
+        for r in 1..=k {
+            for i in 0..=k - r {
+                for line in 0..count {
+                    let (a, b) = (at(line, i), at(line, i + 1));
+                    lerp(c, a, b, a, &t);
+                }
+            }
+        }
+    }
+    if gamma < 1.0 {
+        let t = frac(gamma)?;
+        for r in 1..=k {
+            for i in (r..=k).rev() {
+                for line in 0..count {
+                    let (a, b) = (at(line, i - 1), at(line, i));
+                    lerp(c, a, b, b, &t);
+                }
+            }
+        }
+    }
+    Some(())
+}
+
+/// The box of the unit square reached from `outer` by the floats `(α, γ)`
+/// of a clip per direction, and its endpoints' enclosures; `None` if
+/// `outer` misses the square.
+fn restart_box(outer: [[f64; 2]; 2]) -> Option<([(f64, f64); 2], Ends)> {
+    let mut params = [(0.0, 1.0); 2];
+    let mut bx = [[Iv::point(0.0), Iv::point(1.0)]; 2];
+    for d in 0..2 {
+        let (lo, hi) = (outer[d][0].max(0.0), outer[d][1].min(1.0));
+        if lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
+            return None;
+        }
+        // As `spans::clip`: [α, α + (1 − α)γ] ⊇ [lo, hi].
+        let gamma = if hi >= 1.0 {
+            1.0
+        } else {
+            ((hi - lo).next_up() / (1.0 - lo).next_down()).next_up().min(1.0)
+        };
+        params[d] = (lo, gamma);
+        let a = Iv::point(lo);
+        bx[d] = [
+            a,
+            if gamma < 1.0 {
+                Iv::lerp(a, Iv::point(1.0), gamma)
+            } else {
+                Iv::point(1.0)
+            },
+        ];
+    }
+    Some((params, bx))
 }
 
 /// One de Casteljau step `x + τ (y − x)` in double-double (`τ ∈ [0, 1]` a
@@ -220,7 +467,10 @@ mod tests {
         let mut c = c.to_vec();
         let w = n + 1;
         for (d, &(alpha, gamma)) in params.iter().enumerate() {
-            let (a, g) = (BigRational::from_float(alpha).unwrap(), BigRational::from_float(gamma).unwrap());
+            let (a, g) = (
+                BigRational::from_float(alpha).unwrap(),
+                BigRational::from_float(gamma).unwrap(),
+            );
             let k = if d == 0 { m } else { n };
             let lines = if d == 0 { w } else { m + 1 };
             for line in 0..lines {
@@ -274,7 +524,9 @@ mod tests {
                 let gamma = if outer[d][1] >= 1.0 {
                     1.0
                 } else {
-                    ((outer[d][1] - lo).next_up() / (1.0 - lo).next_down()).next_up().min(1.0)
+                    ((outer[d][1] - lo).next_up() / (1.0 - lo).next_down())
+                        .next_up()
+                        .min(1.0)
                 };
                 (lo, gamma)
             });
@@ -288,13 +540,118 @@ mod tests {
                 for (i, e) in exact.iter().enumerate() {
                     let x: Iv = c[k * sh.len + i];
                     let e = e * BigRational::from_float(2f64.powi(-scale as i32)).unwrap();
-                    let (lo, hi) = (BigRational::from_float(x.lo).unwrap(), BigRational::from_float(x.hi).unwrap());
+                    let (lo, hi) = (
+                        BigRational::from_float(x.lo).unwrap(),
+                        BigRational::from_float(x.hi).unwrap(),
+                    );
                     assert!(lo <= e && e <= hi, "coefficient {i} of poly {k} on {outer:?}");
                     // Tight: within 1e-25 of the domain's scale plus a few ulps of the box's.
                     let w = x.hi - x.lo;
-                    assert!(w <= 1e-25 + 1e-14 * mag * 2f64.powi(-scale as i32), "width {w} on {outer:?}");
+                    assert!(
+                        w <= 1e-25 + 1e-14 * mag * 2f64.powi(-scale as i32),
+                        "width {w} on {outer:?}"
+                    );
                 }
             }
+        }
+    }
+
+    /// Parameters `(α, γ)` per direction of the box holding `outer`.
+    fn params(outer: [[f64; 2]; 2]) -> [(f64, f64); 2] {
+        restart_box(outer).unwrap().0
+    }
+
+    /// Each interval of `c` (poly `k`) holds the exact coefficient times one
+    /// positive factor common to the polynomial (the ratio's range over the
+    /// non-zero coefficients is one point), and is within `rel` of the
+    /// largest coefficient's magnitude.
+    fn assert_encloses(c: &[Iv], sh: Shape, k: usize, exact: &[BigRational], rel: f64) {
+        use num_traits::Signed;
+        let big = exact.iter().max_by(|a, b| a.abs().cmp(&b.abs())).unwrap();
+        let top = c[k * sh.len + exact.iter().position(|x| x == big).unwrap()];
+        // factor = top / big, enclosed: every x must hold e·factor.
+        let (tlo, thi) = (
+            BigRational::from_float(top.lo).unwrap(),
+            BigRational::from_float(top.hi).unwrap(),
+        );
+        let mag = top.lo.abs().max(top.hi.abs());
+        for (i, e) in exact.iter().enumerate() {
+            let x = c[k * sh.len + i];
+            let (lo, hi) = (
+                BigRational::from_float(x.lo).unwrap(),
+                BigRational::from_float(x.hi).unwrap(),
+            );
+            // e·[tlo, thi]/big must meet [lo, hi] (the factor is one number).
+            let r = e / big;
+            let (a, b) = (&r * &tlo, &r * &thi);
+            let (a, b) = if a <= b { (a, b) } else { (b, a) };
+            assert!(a <= hi && lo <= b, "coefficient {i} of poly {k}");
+            assert!(
+                x.hi - x.lo <= rel * mag,
+                "coefficient {i} of poly {k}: {x:?}, top {top:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn fixed_point_restriction_encloses_the_exact_one_tightly() {
+        let (m, n) = (5, 4);
+        let f: Vec<BigRational> = (0..30).map(|i| q((i * 7 % 11) - 5, 3 + i)).collect();
+        let g: Vec<BigRational> = (0..30).map(|i| q((i * 5 % 13) - 6, 7 + 2 * i)).collect();
+        let sh = Shape::pair(m, n);
+        let big = BigSystem::new(m, n, &f, &g, FIRST_BITS).unwrap();
+        for outer in [
+            [[0.0, 1.0], [0.0, 1.0]],
+            [[0.3, 0.3000001], [0.71, 1.0]],
+            [[0.0, 1e-9], [0.5, 0.5 + 1e-12]],
+        ] {
+            let (c, _) = big.restrict(sh, outer).unwrap();
+            for (k, poly) in [&f, &g].iter().enumerate() {
+                assert_encloses(&c, sh, k, &exact_restrict(poly, m, n, params(outer)), 1e-14);
+            }
+        }
+        // Floor shifts of negative numbers round down (the error bound's premise).
+        assert_eq!(BigInt::from(-5) >> 1usize, BigInt::from(-3));
+    }
+
+    /// Twenty roots 1/1000 apart in u: between them the values are ~10⁻³⁸
+    /// of the domain's coefficients, beyond double-double; the restart
+    /// climbs to fixed point and comes back with clean coefficients.
+    #[test]
+    fn a_swamped_box_is_restarted_in_fixed_point() {
+        // f = ∏ (u − 1/3 − k/1000) (bidegree (20, 1), constant in v), g = v − ½.
+        let (m, n) = (20, 1);
+        let mut line = vec![q(1, 1)];
+        for k in 1..=20 {
+            // (u − r)·p in Bernstein form, degree d → d + 1:
+            // c'_i = (i/(d+1)) (1 − r) c_{i−1} − ((d+1−i)/(d+1)) r c_i.
+            let r = q(1, 3) + q(k, 1000);
+            let d = line.len() - 1;
+            let mut next = vec![BigRational::zero(); d + 2];
+            for (i, c) in next.iter_mut().enumerate() {
+                let up = BigRational::new((i as i64).into(), ((d + 1) as i64).into());
+                let down = BigRational::new(((d + 1 - i) as i64).into(), ((d + 1) as i64).into());
+                if i > 0 {
+                    *c += up * (q(1, 1) - &r) * &line[i - 1];
+                }
+                if i <= d {
+                    *c -= down * &r * &line[i];
+                }
+            }
+            line = next;
+        }
+        let f: Vec<BigRational> = line.iter().flat_map(|c| [c.clone(), c.clone()]).collect();
+        let g: Vec<BigRational> = (0..=m).flat_map(|_| [q(-1, 2), q(1, 2)]).collect();
+        let sh = Shape::pair(m, n);
+        let outer = [[1.0 / 3.0 + 0.0102, 1.0 / 3.0 + 0.0108], [0.25, 0.75]];
+        let dd = DdSystem::new(m, n, &f, &g).unwrap();
+        assert!(swamped(&dd.restrict(sh, outer).unwrap().0, sh));
+        let mut r = Restarts::new(m, n, &f, &g);
+        let (c, bx) = r.restrict(sh, outer).unwrap();
+        assert!(!swamped(&c, sh) && !r.big.is_empty());
+        assert!(bx[0][0].lo <= outer[0][0] && bx[0][1].hi >= outer[0][1]);
+        for (k, poly) in [&f, &g].iter().enumerate() {
+            assert_encloses(&c, sh, k, &exact_restrict(poly, m, n, params(outer)), 1e-14);
         }
     }
 

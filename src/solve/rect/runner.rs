@@ -6,7 +6,7 @@ use super::hybrid::hybrid_spans;
 use super::net::{edge_indices, eval_box, one_signed, Node, Shape};
 use super::options::{Objective, Query, RectClip, RectOptions, RectSolution};
 use super::proof::{local_krawczyk, sign_lost};
-use super::restart::DdSystem;
+use super::restart::{swamped, Restarts};
 use super::spans::{clip, hull_spans, keep_aspect, preconditioned_spans, split};
 use crate::error::{Error, Result};
 use crate::poly::TensorBezier;
@@ -19,6 +19,8 @@ use crate::solve::settle::ExactSystem;
 use crate::solve::solution::{Box2, Cluster, Leftover, Root, Solution, Stats, UndecidedReason};
 use inari::Interval;
 use std::sync::Arc;
+
+mod stalled;
 
 /// Boxes at most this wide (relative) get a local Krawczyk test.
 const KRAWCZYK_BELOW: f64 = 0.125;
@@ -33,11 +35,11 @@ const SINGULAR_FLOOR: f64 = 1e-9;
 
 /// Stalled boxes narrower than this (relative) are tried by exact Krawczyk
 /// when the system is exact ([`RectProblem::exact`]) and the box's
-/// coefficients are [`NOISY`].
+/// coefficients are [`NOISY`](super::restart::NOISY).
 const EXACT_BELOW: f64 = 1e-2;
 
 /// Stalled boxes narrower than this (relative) whose coefficients are not
-/// [`NOISY`] are tried by exact Krawczyk.
+/// [`NOISY`](super::restart::NOISY) are tried by exact Krawczyk.
 const EXACT_CLEAN_BELOW: f64 = 1e-4;
 
 /// The relative width of the strip cut along an edge where both equations
@@ -48,11 +50,6 @@ const EDGE_STRIP: f64 = 1.0 / (1u64 << 30) as f64;
 /// Stalled boxes below this (relative) size whose separating sign is lost
 /// to rounding are leaves ([`sign_lost`]).
 const LOST_BELOW: f64 = 1e-3;
-
-/// A stalled box is restarted from the exact input when the widths of an
-/// equation's coefficients exceed this fraction of their largest magnitude
-/// ([`Runner::restart`]).
-const NOISY: f64 = 1e-6;
 
 /// Coefficients beyond this magnitude are rejected (keeps every difference
 /// of two coefficients finite, which the hull crossings rely on).
@@ -344,9 +341,9 @@ struct Runner {
     stopped_early: bool,
     /// Strips cut along edges where both equations may vanish.
     edge_strips: Vec<IBox>,
-    /// The exact system in double-double, built on the first restart
-    /// (`Some(None)` if it cannot be).
-    restarts: Option<Option<DdSystem>>,
+    /// The exact system in higher precisions, built on the first restart
+    /// (`Some(None)` without one).
+    restarts: Option<Option<Restarts>>,
 }
 
 enum Step {
@@ -575,7 +572,7 @@ impl Runner {
             }
         }
         let w = self.rel_width(&node);
-        let noisy = self.noisy(&node);
+        let noisy = swamped(&node.c, self.shape);
         if noisy && 4.0 * w[0].max(w[1]) <= node.restart_w {
             if let Some(fresh) = self.restart(&node) {
                 return Step::Continue(fresh);
@@ -722,123 +719,6 @@ impl Runner {
                 }
                 self.edge_strips.push(strip);
             }
-        }
-    }
-
-    /// Whether rounding has swamped the node's coefficients: some equation's
-    /// widths exceed [`NOISY`] of its largest magnitude.
-    fn noisy(&self, node: &Node) -> bool {
-        let sh = self.shape;
-        node.c.chunks_exact(sh.len).take(2).any(|c| {
-            let (mut wid, mut mag) = (0.0f64, 0.0f64);
-            for x in c {
-                wid = wid.max(x.hi - x.lo);
-                mag = mag.max(x.lo.abs().max(x.hi.abs()));
-            }
-            wid > NOISY * mag
-        })
-    }
-
-    /// The node recomputed from the exact input ([`DdSystem::restrict`]):
-    /// its coefficients on a box holding it (its outer box, up to the
-    /// rounding of a clip), each within a few ulps of its own magnitude
-    /// where the node's had the rounding of the domain's. `None` without an
-    /// exact system, or where the recomputed node is as noisy.
-    fn restart(&mut self, node: &Node) -> Option<Node> {
-        if self.restarts.is_none() {
-            let dd = self.problem.exact.as_ref().and_then(|sys| {
-                let (m, n, [f, g]) = sys.tensor_input()?;
-                DdSystem::new(m, n, f, g)
-            });
-            self.restarts = Some(dd);
-        }
-        let dd = self.restarts.as_ref()?.as_ref()?;
-        let (c, bx) = dd.restrict(self.shape, node.outer())?;
-        let mut fresh = Node {
-            c,
-            bx,
-            id: node.id,
-            key: None,
-            exact_w: node.exact_w,
-            restart_w: 0.0,
-        };
-        if self.noisy(&fresh) {
-            return None;
-        }
-        let w = self.rel_width(&fresh);
-        fresh.restart_w = w[0].max(w[1]);
-        fresh.id = self.push_trace(node.id, fresh.outer());
-        self.stats.exact_restarts += 1;
-        Some(fresh)
-    }
-
-    /// A stalled box tried by exact Krawczyk (exact input only):
-    /// `Some(Done)` if that settles it — a unique root of a box around it
-    /// lies inside the node (recorded) or outside it, or there is none —
-    /// and `None` otherwise (also without an exact system).
-    ///
-    /// Exact Krawczyk proves `K ⊂ int X` on the node's outer box widened by
-    /// an eighth ([`ExactSystem::certify`]): that box holds exactly one root,
-    /// in `K`. Inside the node's inner box, the root is the node's; disjoint
-    /// from its outer box, the node holds none; straddling an edge, it is
-    /// left to the usual steps (a neighbour may claim it).
-    fn try_exact(&mut self, node: &Node) -> Option<Step> {
-        let sys = self.problem.exact.clone()?;
-        self.stats.krawczyk_calls += 1;
-        let o = node.outer();
-        match sys.certify(Box2 { u: o[0], v: o[1] }) {
-            Verdict::Unique(k) => {
-                let kb = [k.u, k.v];
-                let inside = (0..2).all(|a| kb[a][0] > node.bx[a][0].hi && kb[a][1] < node.bx[a][1].lo);
-                let outside = (0..2).any(|a| kb[a][1] < o[a][0] || kb[a][0] > o[a][1]);
-                if inside {
-                    self.add_root(k.ibox(), node.id);
-                    Some(Step::Done)
-                } else if outside {
-                    self.stats.krawczyk_exclusions += 1;
-                    Some(Step::Done)
-                } else {
-                    None
-                }
-            }
-            Verdict::NoRoot => {
-                self.stats.krawczyk_exclusions += 1;
-                Some(Step::Done)
-            }
-            Verdict::Undecided(()) => None,
-        }
-    }
-
-    /// A box below `eps` that local Krawczyk did not settle.
-    fn leaf(&mut self, node: &Node) {
-        self.stats.leaves += 1;
-        self.stats.krawczyk_calls += 1;
-        let x = node.ibox();
-        // Exact input: exact Krawczyk sees through the rounding that left
-        // this leaf (the inari test on the same coefficients would not).
-        let verdict = match self.problem.exact.clone() {
-            Some(sys) => match sys.certify(Box2::of(x)) {
-                Verdict::Unique(k) => Verdict::Unique(k.ibox()),
-                Verdict::NoRoot => Verdict::NoRoot,
-                Verdict::Undecided(()) => Verdict::Undecided(x),
-            },
-            None => self.system().certify(x),
-        };
-        match verdict {
-            Verdict::Unique(k) => {
-                if k[0].disjoint(x[0]) || k[1].disjoint(x[1]) {
-                    self.stats.krawczyk_exclusions += 1;
-                } else {
-                    // The root may lie just outside this box (in a neighbour):
-                    // no objective bound from this box's coefficients then.
-                    self.add_root(k, node.id);
-                }
-            }
-            Verdict::NoRoot => self.stats.krawczyk_exclusions += 1,
-            Verdict::Undecided(_) => self.undecided.push(Found {
-                bx: x,
-                diameters: self.diameters(node.id),
-            }),
         }
     }
 
