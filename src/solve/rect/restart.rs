@@ -251,6 +251,7 @@ impl Restarts {
 pub(super) struct BigSystem {
     m: usize,
     n: usize,
+    bits: u64,
     polys: [Vec<BigInt>; 2],
 }
 
@@ -282,6 +283,7 @@ impl BigSystem {
         Some(Self {
             m,
             n,
+            bits,
             polys: [fixed(f)?, fixed(g)?],
         })
     }
@@ -296,10 +298,24 @@ impl BigSystem {
         let steps = 2 * (self.m + self.n) as u64 + 1;
         let mut out = Vec::with_capacity(sh.polys * sh.len);
         for p in &self.polys {
-            let mut c = p.clone();
-            for (d, &(alpha, gamma)) in params.iter().enumerate() {
-                restrict_fixed(&mut c, self.m, self.n, d, alpha, gamma)?;
-            }
+            let (m, n) = (self.m, self.n);
+            // Fixed widths for the precisions tried (values below 2^(bits + 2)).
+            let c = match self.bits {
+                b if b + 4 <= 4 * 64 => restrict_fx::<4>(p, m, n, &params),
+                b if b + 4 <= 7 * 64 => restrict_fx::<7>(p, m, n, &params),
+                b if b + 4 <= 13 * 64 => restrict_fx::<13>(p, m, n, &params),
+                _ => None,
+            };
+            let c = match c {
+                Some(c) => c,
+                None => {
+                    let mut c = p.clone();
+                    for (d, &(alpha, gamma)) in params.iter().enumerate() {
+                        restrict_fixed(&mut c, m, n, d, alpha, gamma)?;
+                    }
+                    c
+                }
+            };
             // X ± E in units, shifted so the largest has 53 bits: exact
             // floats. Fewer than 52 bits above E: not enough precision.
             let e = BigInt::from(steps);
@@ -321,52 +337,163 @@ impl BigSystem {
     }
 }
 
+/// An integer type the fixed-point steps run on: [`BigInt`], or [`Fx`] of
+/// a fixed width (the same integers, without allocation).
+trait FixedPoint: Clone {
+    /// `c[into] = c[a] + ⌊t (c[b] − c[a]) / 2ᵏ⌋` (`into` is `a` or `b`),
+    /// with `scratch` for the difference.
+    fn step(c: &mut [Self], a: usize, b: usize, into: usize, t: u64, k: usize, scratch: &mut Self);
+}
+
+impl FixedPoint for BigInt {
+    fn step(c: &mut [Self], a: usize, b: usize, into: usize, t: u64, k: usize, z: &mut Self) {
+        z.clone_from(&c[b]);
+        *z -= &c[a];
+        *z *= t;
+        *z >>= k;
+        if into != a {
+            let (lo, hi) = c.split_at_mut(into);
+            hi[0].clone_from(&lo[a]);
+        }
+        c[into] += &*z;
+    }
+}
+
+/// A signed integer of `N` 64-bit limbs, two's complement, little-endian:
+/// enough for the fixed-point values (`|X| < 2^(64N − 3)`), and their
+/// products by `T < 2⁵³` in one more limb.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Fx<const N: usize>([u64; N]);
+
+impl<const N: usize> Fx<N> {
+    /// `x` if it fits in `64N − 3` bits (so that the steps' convex
+    /// combinations, a unit or so above their inputs, and their differences
+    /// fit in `64N − 1`).
+    fn from_big(x: &BigInt) -> Option<Self> {
+        if x.bits() + 3 > 64 * N as u64 {
+            return None;
+        }
+        let bytes = x.to_signed_bytes_le();
+        let fill = if x.sign() == num_bigint::Sign::Minus { 0xff } else { 0 };
+        let mut limbs = [0u64; N];
+        for (i, l) in limbs.iter_mut().enumerate() {
+            let mut b = [fill; 8];
+            for (j, v) in b.iter_mut().enumerate() {
+                if let Some(&x) = bytes.get(8 * i + j) {
+                    *v = x;
+                }
+            }
+            *l = u64::from_le_bytes(b);
+        }
+        Some(Self(limbs))
+    }
+
+    fn to_big(self) -> BigInt {
+        let bytes: Vec<u8> = self.0.iter().flat_map(|l| l.to_le_bytes()).collect();
+        BigInt::from_signed_bytes_le(&bytes)
+    }
+}
+
+impl<const N: usize> FixedPoint for Fx<N> {
+    fn step(c: &mut [Self], a: usize, b: usize, into: usize, t: u64, k: usize, _: &mut Self) {
+        let (x, y) = (c[a].0, c[b].0);
+        // d = y − x (fits: both below 2^(64N − 2) in magnitude).
+        let mut d = [0u64; N];
+        let mut borrow = false;
+        for i in 0..N {
+            let (v, b1) = y[i].overflowing_sub(x[i]);
+            let (v, b2) = v.overflowing_sub(borrow as u64);
+            d[i] = v;
+            borrow = b1 || b2;
+        }
+        // p = d·t in N + 1 limbs: the unsigned product, less t·2^(64N) if
+        // d < 0 (two's complement).
+        let neg = (d[N - 1] as i64) < 0;
+        let mut p = [0u64; N];
+        let mut carry = 0u128;
+        for i in 0..N {
+            let v = d[i] as u128 * t as u128 + carry;
+            p[i] = v as u64;
+            carry = v >> 64;
+        }
+        let top = if neg {
+            (carry as u64).wrapping_sub(t)
+        } else {
+            carry as u64
+        };
+        // ⌊p / 2ᵏ⌋: arithmetic shift of the N + 1 limbs.
+        let ext = if (top as i64) < 0 { u64::MAX } else { 0 };
+        let limb = |j: usize| match j.cmp(&N) {
+            std::cmp::Ordering::Less => p[j],
+            std::cmp::Ordering::Equal => top,
+            std::cmp::Ordering::Greater => ext,
+        };
+        let (q, r) = (k / 64, k % 64);
+        let mut z = [0u64; N];
+        for (i, zi) in z.iter_mut().enumerate() {
+            let (lo, hi) = (limb(i.saturating_add(q)), limb(i.saturating_add(q).saturating_add(1)));
+            *zi = if r == 0 { lo } else { (lo >> r) | (hi << (64 - r)) };
+        }
+        // c[into] = x + z.
+        let mut out = [0u64; N];
+        let mut carry = false;
+        for i in 0..N {
+            let (v, c1) = x[i].overflowing_add(z[i]);
+            let (v, c2) = v.overflowing_add(carry as u64);
+            out[i] = v;
+            carry = c1 || c2;
+        }
+        c[into] = Fx(out);
+    }
+}
+
 /// The net `c` (bidegree `(m, n)`, row-major, fixed point) restricted in
 /// direction `d` to `[α, 1]` and then to the first `γ` of that, each step
 /// `X + ⌊T (Y − X) / 2ᵏ⌋` (module docs). `None` for a non-finite parameter.
-fn restrict_fixed(c: &mut [BigInt], m: usize, n: usize, d: usize, alpha: f64, gamma: f64) -> Option<()> {
+fn restrict_fixed<T: FixedPoint>(c: &mut [T], m: usize, n: usize, d: usize, alpha: f64, gamma: f64) -> Option<()> {
     let w = n + 1;
     let k = if d == 0 { m } else { n };
     let (count, stride, step) = if d == 0 { (w, w, 1) } else { (m + 1, 1, w) };
     let at = |line: usize, i: usize| line * step + i * stride;
-    let lerp = |c: &mut [BigInt], a: usize, b: usize, into: usize, (t, sh): &(BigInt, usize)| {
-        let mut z = &c[b] - &c[a];
-        z *= t;
-        z >>= *sh;
-        c[into] = &c[a] + z;
-    };
-    let frac = |x: f64| -> Option<(BigInt, usize)> {
+    let mut z = c.first()?.clone();
+    let frac = |x: f64| -> Option<(u64, usize)> {
+        // τ ∈ (0, 1) is T·2⁻ᵏ with T < 2⁵³, k ≥ 0.
         let (t, e) = dyadic(x)?;
-        // τ ∈ (0, 1): e ≥ 0 except for τ = 1 = 2⁵²·2⁻⁵², handled by callers.
-        Some(if e >= 0 {
-            (t, e as usize)
-        } else {
-            (t << (-e) as usize, 0)
-        })
+        Some((t.to_u64()?, usize::try_from(e).ok()?))
     };
     if alpha > 0.0 {
-        let t = frac(alpha)?;
+        let (t, sh) = frac(alpha)?;
         for r in 1..=k {
             for i in 0..=k - r {
                 for line in 0..count {
                     let (a, b) = (at(line, i), at(line, i + 1));
-                    lerp(c, a, b, a, &t);
+                    T::step(c, a, b, a, t, sh, &mut z);
                 }
             }
         }
     }
     if gamma < 1.0 {
-        let t = frac(gamma)?;
+        let (t, sh) = frac(gamma)?;
         for r in 1..=k {
             for i in (r..=k).rev() {
                 for line in 0..count {
                     let (a, b) = (at(line, i - 1), at(line, i));
-                    lerp(c, a, b, b, &t);
+                    T::step(c, a, b, b, t, sh, &mut z);
                 }
             }
         }
     }
     Some(())
+}
+
+/// [`restrict_fixed`] on `N`-limb integers, converted from and back to
+/// [`BigInt`]; `None` if a value does not fit.
+fn restrict_fx<const N: usize>(c: &[BigInt], m: usize, n: usize, params: &[(f64, f64); 2]) -> Option<Vec<BigInt>> {
+    let mut x: Vec<Fx<N>> = c.iter().map(Fx::from_big).collect::<Option<_>>()?;
+    for (d, &(alpha, gamma)) in params.iter().enumerate() {
+        restrict_fixed(&mut x, m, n, d, alpha, gamma)?;
+    }
+    Some(x.into_iter().map(Fx::to_big).collect())
 }
 
 /// The box of the unit square reached from `outer` by the floats `(α, γ)`
@@ -653,6 +780,52 @@ mod tests {
         for (k, poly) in [&f, &g].iter().enumerate() {
             assert_encloses(&c, sh, k, &exact_restrict(poly, m, n, params(outer)), 1e-14);
         }
+    }
+
+    /// The fixed-width steps compute the same integers as `BigInt`'s: nets
+    /// of both signs near the width's limit, parameters from ½ to 2⁻³⁰⁰
+    /// (shifts past every limb).
+    #[test]
+    fn fixed_width_steps_match_big_integers() {
+        let mut seed = 0x9e3779b97f4a7c15u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let (m, n) = (4, 3);
+        for round in 0..40 {
+            let c: Vec<BigInt> = (0..20)
+                .map(|_| {
+                    let mut x = BigInt::from(next() >> 1);
+                    for _ in 0..3 {
+                        x = (x << 64) + BigInt::from(next());
+                    }
+                    // 256-bit magnitudes, then down to fit 4 limbs (253 bits).
+                    let x = x >> (3 + (next() % 40) as usize);
+                    if next() % 2 == 0 {
+                        -x
+                    } else {
+                        x
+                    }
+                })
+                .collect();
+            let taus = [0.5, 0.3, 1e-5, 0.999999, 2f64.powi(-300), 0.123456789];
+            let params = [
+                (taus[round % 6], taus[(round / 6) % 6]),
+                (taus[(round + 3) % 6], taus[(round + 1) % 6]),
+            ];
+            let fast = restrict_fx::<4>(&c, m, n, &params).unwrap();
+            let mut slow = c.clone();
+            for (d, &(a, g)) in params.iter().enumerate() {
+                restrict_fixed(&mut slow, m, n, d, a, g).unwrap();
+            }
+            assert_eq!(fast, slow, "round {round}");
+        }
+        assert!(Fx::<4>::from_big(&(BigInt::from(1) << 253usize)).is_none());
+        let x: BigInt = -(BigInt::from(1) << 252usize) + 12345;
+        assert_eq!(Fx::<4>::from_big(&x).unwrap().to_big(), x);
     }
 
     #[test]

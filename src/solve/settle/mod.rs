@@ -546,6 +546,18 @@ impl ExactSystem {
         }
     }
 
+    /// [`ExactSystem::certify`] without the exact retry: `F` at the centre
+    /// exact, the Jacobian in `f64` intervals (exact only where those are
+    /// unbounded). For callers whose own float work is clean, where a
+    /// failure means several roots or a multiple one, not rounding.
+    pub(crate) fn certify_fast(&self, bx: Box2) -> Verdict<Box2, ()> {
+        let fast = Fast {
+            sys: self,
+            lossy: std::cell::Cell::new(false),
+        };
+        exact::certify(&fast, bx)
+    }
+
     /// Whether the Jacobian at the centre of `bx`, estimated in `f64`, is
     /// singular within `10⁻¹¹` of its rows' norms (or not finite): a
     /// multiple root, or roots closer than the exact tests separate. An

@@ -44,11 +44,22 @@ impl Runner {
     /// in `K`. Inside the node's inner box, the root is the node's; disjoint
     /// from its outer box, the node holds none; straddling an edge, it is
     /// left to the usual steps (a neighbour may claim it).
+    ///
+    /// A node whose coefficients are clean (not [`swamped`]) stalled on
+    /// several roots or a multiple one, not on rounding: it gets only the
+    /// test with the Jacobian in floats ([`ExactSystem::certify_fast`]),
+    /// never the exact enclosures that cost milliseconds per box there.
     pub(super) fn try_exact(&mut self, node: &Node) -> Option<Step> {
         let sys = self.problem.exact.clone()?;
         self.stats.krawczyk_calls += 1;
         let o = node.outer();
-        match sys.certify(Box2 { u: o[0], v: o[1] }) {
+        let bx = Box2 { u: o[0], v: o[1] };
+        let verdict = if swamped(&node.c, self.shape) {
+            sys.certify(bx)
+        } else {
+            sys.certify_fast(bx)
+        };
+        match verdict {
             Verdict::Unique(k) => {
                 let kb = [k.u, k.v];
                 let inside = (0..2).all(|a| kb[a][0] > node.bx[a][0].hi && kb[a][1] < node.bx[a][1].lo);
