@@ -82,6 +82,12 @@ def systems():
     out.append(("pencil10@(0,1/2) x 2 verticals, triangle", "triangle", pencil, [(1, 0, F(-1, 5)), (1, 0, F(-2, 5))], []))
     pencil2 = [(F(k - 5, 10) + F(1, 20), -1, F(1, 2) - (F(k - 5, 10) + F(1, 20))) for k in range(10)]  # through (1, 1/2)
     out.append(("pencil10@(0,1/2) x pencil10@(1,1/2), square", "square", pencil, pencil2, []))
+    # Two pencils of 20 lines through (0, 1/2) and (1/3, 0): each product
+    # vanishes to order 20 at its pencil's point.
+    p20a = [(F(4 * k - 39, 40), -1, F(1, 2)) for k in range(20)]
+    p20b = [(1, F(4 * k - 39, 40), F(-1, 3)) for k in range(20)]
+    out.append(("pencil20@(0,1/2) x pencil20@(1/3,0), square", "square", p20a, p20b, []))
+    out.append(("pencil20@(0,1/2) x pencil20@(1/3,0), triangle", "triangle", p20a, p20b, []))
     v30 = [(1, 0, F(-i, 31)) for i in range(1, 31)]
     h30 = [(0, 1, F(-j, 31)) for j in range(1, 31)]
     out.append(("grid30x30/31 square", "square", v30, h30, []))
