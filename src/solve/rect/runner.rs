@@ -572,7 +572,8 @@ impl Runner {
             }
         }
         let w = self.rel_width(&node);
-        let noisy = swamped(&node.c, self.shape);
+        // (Only exact input has anything to restart from or test exactly.)
+        let noisy = self.problem.exact.is_some() && swamped(&node.c, self.shape);
         if noisy && 4.0 * w[0].max(w[1]) <= node.restart_w {
             if let Some(fresh) = self.restart(&node) {
                 return Step::Continue(fresh);
