@@ -420,3 +420,29 @@ fn products_of_thirty_lines_are_all_certified() {
         .collect();
     assert_all_certified(&f, &g, Domain::Square, SquareRoute::Rect, &want);
 }
+
+/// Two pencils through the vertex `(1, 0)` (10 and 5 lines): one root of
+/// multiplicity 50 there and no other. One honest `multiple_or_close` region
+/// at the vertex, on both domains — found exactly as a multiple root, so
+/// the square's answer is not retried on the triangles.
+#[test]
+fn two_pencils_through_a_vertex_leave_one_region_there() {
+    use rootclip::poly::parse_polynomial;
+    use rootclip::solve::{solve, Domain, SolveOptions, UndecidedReason};
+    let f: Vec<String> = (1..=10).map(|k| format!("(({k}/11)*(u - 1) + v)")).collect();
+    let g: Vec<String> = (1..=5).map(|k| format!("(({k}/6 + 1/18)*(u - 1) + v)")).collect();
+    let (f, g) = (
+        parse_polynomial(&f.join("*")).unwrap(),
+        parse_polynomial(&g.join("*")).unwrap(),
+    );
+    for domain in [Domain::Square, Domain::Triangle] {
+        let sol = solve(&f, &g, domain, &SolveOptions::default()).unwrap();
+        assert!(sol.complete && sol.roots.is_empty(), "{domain:?}: {sol:?}");
+        assert_eq!(sol.clusters.len(), 1, "{domain:?}");
+        let c = &sol.clusters[0];
+        assert!(
+            c.reason == UndecidedReason::MultipleOrClose && c.bx.contains(1.0, 0.0),
+            "{domain:?}: {c:?}"
+        );
+    }
+}

@@ -90,10 +90,7 @@ fn triangle_by_boxes(
         return Ok(None);
     }
     let sol = finish_exact(sol, &boxes, sys, opts.deadline);
-    let stuck = sol
-        .clusters
-        .iter()
-        .any(|c| c.reason == UndecidedReason::MultipleOrClose);
+    let stuck = separable_clusters(&sol, &boxes);
     if stuck && dm + dn <= TRIANGLES_RETRY_DEGREE && !late() {
         // As on the square: two simple roots closer than rounding
         // separates on boxes may separate on tri-boxes with exact restarts.
@@ -130,10 +127,7 @@ pub(super) fn solve_exact_square(
             return solve_exact_square_triangles(&ef, &eg, &sys, opts);
         }
         let sol = finish_exact(sol, &sys, &sys, opts.deadline);
-        let stuck = sol
-            .clusters
-            .iter()
-            .any(|c| c.reason == UndecidedReason::MultipleOrClose);
+        let stuck = separable_clusters(&sol, &sys);
         if stuck && dm + dn <= TRIANGLES_RETRY_DEGREE && !late() {
             // Two simple roots closer than rounding separates on boxes (a
             // line nearly tangent to a conic): the triangles' exact
@@ -168,6 +162,16 @@ fn scaled_tensor_system(
         None,
     )?;
     Ok((ef, eg, sys))
+}
+
+/// Whether some `multiple_or_close` region of `sol` might be close simple
+/// roots that the tri-boxes separate: one not known to hold an exact
+/// multiple root ([`settle::ExactSystem::holds_exact_multiple_root`]; such a
+/// region stays undecided on every route).
+fn separable_clusters(sol: &Solution, sys: &settle::ExactSystem) -> bool {
+    sol.clusters
+        .iter()
+        .any(|c| c.reason == UndecidedReason::MultipleOrClose && !sys.holds_exact_multiple_root(c.bx))
 }
 
 /// Bidegrees `m + n` up to which a box-route answer with undecided regions

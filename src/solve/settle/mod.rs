@@ -546,6 +546,25 @@ impl ExactSystem {
         }
     }
 
+    /// Whether one of the simplest points of `bx` ([`ExactSystem::rational_root`]'s
+    /// candidates) is a root at which the Jacobian's determinant vanishes
+    /// too, all exactly: a multiple root, which no Krawczyk test certifies.
+    /// `false` claims nothing (an irrational multiple root is not found).
+    pub(crate) fn holds_exact_multiple_root(&self, bx: Box2) -> bool {
+        let iv = |[lo, hi]: [f64; 2]| Some(RI::new(Q::from_float(lo)?, Q::from_float(hi)?));
+        let (Some(u), Some(v)) = (iv(bx.u), iv(bx.v)) else {
+            return false;
+        };
+        let Some(p) = self.rational_root(&[u, v]) else {
+            return false;
+        };
+        let d = |k: usize, e: usize| self.deriv_at(k, e, &p);
+        match (d(0, 0), d(0, 1), d(1, 0), d(1, 1)) {
+            (Some(a), Some(b), Some(c), Some(e)) => (a * e - b * c).is_zero(),
+            _ => false,
+        }
+    }
+
     /// [`ExactSystem::certify`] without the exact retry: `F` at the centre
     /// exact, the Jacobian in `f64` intervals (exact only where those are
     /// unbounded). For callers whose own float work is clean, where a

@@ -188,3 +188,25 @@ fn bernstein_to_power_matches_the_definition() {
     let want: Vec<Q> = [1, 4, -3].iter().map(|&x| Q::from_integer(x.into())).collect();
     assert_eq!(p, want);
 }
+
+/// A double root at a rational point is found exactly (`f = (u − ½)²`,
+/// `g = v − ¼`); a simple one (`f = u − ½`) and a double root at an
+/// irrational point are not claimed.
+#[test]
+fn exact_multiple_roots_are_found_only_where_they_are() {
+    let bx = Box2 {
+        u: [0.5 - 1e-9, 0.5 + 1e-9],
+        v: [0.25 - 1e-9, 0.25 + 1e-9],
+    };
+    let g = in_v(["-1/4", "3/4"]);
+    // (u − ½)² in Bernstein form of degree 2: ¼, −¼, ¼.
+    let double = ExactSystem::new(Shape::Tensor(2, 1), in_u(["1/4", "-1/4", "1/4"]), g.clone(), None).unwrap();
+    assert!(double.holds_exact_multiple_root(bx));
+    let simple = ExactSystem::new(Shape::Tensor(2, 1), in_u(["-1/2", "0", "1/2"]), g.clone(), None).unwrap();
+    assert!(!simple.holds_exact_multiple_root(bx));
+    // (u − ½)² − 2⁻⁸⁰ has two simple roots ½ ± 2⁻⁴⁰, none at the box's simplest points.
+    let e = Q::new(1.into(), BigInt::one() << 80);
+    let close: Vec<Q> = in_u(["1/4", "-1/4", "1/4"]).iter().map(|c| c - &e).collect();
+    let close = ExactSystem::new(Shape::Tensor(2, 1), close, g, None).unwrap();
+    assert!(!close.holds_exact_multiple_root(bx));
+}
