@@ -103,6 +103,9 @@ pub(super) struct Node {
     /// restarted from the exact input (`∞` if never): restarted again only
     /// once a quarter as wide.
     pub(super) restart_w: f64,
+    /// Whether the last restart of this box (or an ancestor) found no
+    /// precision that clears the rounding.
+    pub(super) restart_failed: bool,
 }
 
 impl Node {

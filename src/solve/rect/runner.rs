@@ -314,6 +314,7 @@ pub(crate) fn solve_rect_iv(p: RectProblem, opts: &RectOptions) -> Result<RectSo
         key: None,
         exact_w: f64::INFINITY,
         restart_w: f64::INFINITY,
+        restart_failed: false,
         c: buf,
         bx: domain,
         id: run.push_trace(u32::MAX, domain.map(|[lo, hi]| [lo.lo, hi.hi])),
@@ -507,6 +508,11 @@ impl Runner {
             }
         }
         if w[0].max(w[1]) < self.opts.eps {
+            // A box that clipped down to `eps` while rounding swamped it
+            // is recomputed first: its Krawczyk test may then succeed.
+            if let Some(fresh) = self.try_restart(&mut node) {
+                return Step::Continue(fresh);
+            }
             self.leaf(&node);
             return Step::Done;
         }
@@ -573,15 +579,12 @@ impl Runner {
         }
         let w = self.rel_width(&node);
         // (Only exact input has anything to restart from or test exactly.)
-        let noisy = self.problem.exact.is_some() && swamped(&node.c, self.shape);
-        if noisy && 4.0 * w[0].max(w[1]) <= node.restart_w {
-            if let Some(fresh) = self.restart(&node) {
-                return Step::Continue(fresh);
-            }
-            node.restart_w = w[0].max(w[1]);
+        if let Some(fresh) = self.try_restart(&mut node) {
+            return Step::Continue(fresh);
         }
         // Rounding stalls a box at any size, two close roots only a wide
         // one: a clean box is tried exactly only once it is small.
+        let noisy = self.problem.exact.is_some() && swamped(&node.c, self.shape);
         let below = if noisy { EXACT_BELOW } else { EXACT_CLEAN_BELOW };
         if w[0].max(w[1]) < below && 4.0 * w[0].max(w[1]) <= node.exact_w {
             if let Some(done) = self.try_exact(&node) {

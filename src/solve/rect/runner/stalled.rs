@@ -5,6 +5,24 @@
 use super::*;
 
 impl Runner {
+    /// The node restarted ([`Runner::restart`]) if the input is exact, its
+    /// coefficients are [`swamped`], and it is a quarter as wide as at its
+    /// last restart; a failed restart is recorded in the node
+    /// (`restart_failed`, and its width as `restart_w`).
+    pub(super) fn try_restart(&mut self, node: &mut Node) -> Option<Node> {
+        let w = self.rel_width(node);
+        let w = w[0].max(w[1]);
+        if self.problem.exact.is_none() || 4.0 * w > node.restart_w || !swamped(&node.c, self.shape) {
+            return None;
+        }
+        let fresh = self.restart(node);
+        if fresh.is_none() {
+            node.restart_w = w;
+            node.restart_failed = true;
+        }
+        fresh
+    }
+
     /// The node recomputed from the exact input ([`Restarts::restrict`]):
     /// its coefficients on a box holding it (its outer box, up to the
     /// rounding of a clip), each within a few ulps of its own magnitude
@@ -26,6 +44,7 @@ impl Runner {
             key: None,
             exact_w: node.exact_w,
             restart_w: 0.0,
+            restart_failed: false,
         };
         let w = self.rel_width(&fresh);
         fresh.restart_w = w[0].max(w[1]);
@@ -45,16 +64,18 @@ impl Runner {
     /// from its outer box, the node holds none; straddling an edge, it is
     /// left to the usual steps (a neighbour may claim it).
     ///
-    /// A node whose coefficients are clean (not [`swamped`]) stalled on
-    /// several roots or a multiple one, not on rounding: it gets only the
-    /// test with the Jacobian in floats ([`ExactSystem::certify_fast`]),
-    /// never the exact enclosures that cost milliseconds per box there.
+    /// Only a node that rounding swamps and no restart cleared gets the
+    /// exact Jacobian enclosures, which cost milliseconds per box at high
+    /// degree; any other node gets the test with the Jacobian in floats
+    /// ([`ExactSystem::certify_fast`]): a clean one stalled on several roots
+    /// or a multiple one, not on rounding, and a swamped one will be
+    /// restarted once a quarter as wide.
     pub(super) fn try_exact(&mut self, node: &Node) -> Option<Step> {
         let sys = self.problem.exact.clone()?;
         self.stats.krawczyk_calls += 1;
         let o = node.outer();
         let bx = Box2 { u: o[0], v: o[1] };
-        let verdict = if swamped(&node.c, self.shape) {
+        let verdict = if node.restart_failed && swamped(&node.c, self.shape) {
             sys.certify(bx)
         } else {
             sys.certify_fast(bx)
