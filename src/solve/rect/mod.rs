@@ -58,9 +58,11 @@
 //! every clip stalls. Such a stalled box is recomputed from the exact input
 //! on a box holding it (`restart.rs`): in double-double, or in fixed point
 //! on big integers of growing precision, until its widths are within
-//! `10⁻¹²` of its magnitudes; again only once a quarter as wide. A clean
+//! `10⁻¹²` of its magnitudes; again only once a quarter as wide. A swamped
+//! box that clipped below `eps` is restarted before its leaf test. A clean
 //! stalled box (two close roots, not rounding) is tried by exact Krawczyk
-//! only below `10⁻⁴`, a swamped one that no restart cleared below `10⁻²`.
+//! with the `f64` Jacobian only below `10⁻⁴`; a swamped one below `10⁻²`,
+//! with exact Jacobian enclosures only if no restart cleared it.
 //!
 //! # Leaves
 //! A box narrower than `eps` that Krawczyk could not settle in its interior
