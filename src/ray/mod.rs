@@ -84,9 +84,9 @@ use rayon::prelude::*;
 ///
 /// `complete` keeps its meaning for the hits the query asks for. Each hit is
 /// certified or says why not ([`HitStatus`]); see the module docs for the
-/// reduction. Errors: invalid options ([`Error::InvalidOption`](crate::Error::InvalidOption));
+/// reduction. Errors: invalid options ([`Error::InvalidOption`]);
 /// a hit whose `t` or point overflows `f64` (a direction too short for the patch:
-/// [`Error::NonFinite`](crate::Error::NonFinite)).
+/// [`Error::NonFinite`]).
 ///
 /// ```
 /// use rootclip::glam::DVec3;
