@@ -20,8 +20,8 @@ def lines_product(lines):
     """prod (a u + b v + c) as an expression string."""
     return "*".join(f"(({a})*u + ({b})*v + ({c}))" for a, b, c in lines)
 
-def crossings(f_lines, g_lines, domain):
-    """Distinct crossings of a line of f with a line of g inside the closed domain."""
+def crossing_points(f_lines, g_lines, domain):
+    """Distinct crossings (exact rationals) of a line of f with a line of g inside the closed domain."""
     pts = set()
     for a1, b1, c1 in f_lines:
         for a2, b2, c2 in g_lines:
@@ -37,7 +37,11 @@ def crossings(f_lines, g_lines, domain):
             if domain == "square" and (u > 1 or v > 1):
                 continue
             pts.add((u, v))
-    return len(pts)
+    return pts
+
+def crossings(f_lines, g_lines, domain):
+    """How many distinct crossings lie in the closed domain."""
+    return len(crossing_points(f_lines, g_lines, domain))
 
 def rng(seed):
     x = seed

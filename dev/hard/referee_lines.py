@@ -18,21 +18,6 @@ sys.path.insert(0, os.path.dirname(__file__))
 import families as fm  # noqa: E402
 
 
-def crossing_points(fl, gl, dom):
-    pts = set()
-    for a1, b1, c1 in fl:
-        for a2, b2, c2 in gl:
-            det = F(a1) * F(b2) - F(a2) * F(b1)
-            if det == 0:
-                continue
-            u = (F(b1) * F(c2) - F(b2) * F(c1)) / det
-            v = (F(c1) * F(a2) - F(c2) * F(a1)) / det
-            if u < 0 or v < 0 or (dom == "triangle" and u + v > 1) or (dom == "square" and (u > 1 or v > 1)):
-                continue
-            pts.add((u, v))
-    return pts
-
-
 def main():
     args = sys.argv[1:]
     binary = args[0]
@@ -45,7 +30,7 @@ def main():
         n = 12 + (seed * 7) % 19
         fl, gl = fm.random_lines(n, seed * 2 + 101), fm.random_lines(n, seed * 2 + 102)
         for dom in ["square", "triangle"]:
-            pts = crossing_points(fl, gl, dom)
+            pts = fm.crossing_points(fl, gl, dom)
             t0 = time.perf_counter()
             p = subprocess.run([binary, "solve", "--f", fm.lines_product(fl), "--g", fm.lines_product(gl),
                                 "--domain", dom, "--json", "--timeout", "60"], capture_output=True, text=True)
