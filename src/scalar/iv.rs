@@ -160,7 +160,7 @@ impl Iv {
     /// hull of the two endpoint values (for fixed `x`, `y` the value is linear
     /// in `t`; over `x`, `y` its minimum is concave and its maximum convex in
     /// `t`, so both extremes are at `t0` or `t1`).
-    #[inline]
+    #[inline(always)]
     pub fn lerp_range(a: Self, b: Self, t0: f64, t1: f64) -> Self {
         if t0 == t1 {
             // A point: one evaluation (the hot case of bounds at points).

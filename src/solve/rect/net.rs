@@ -248,14 +248,14 @@ fn eval_box_square<const K: usize, const L: usize>(p: &[Iv], s: [f64; 2], t: [f6
     for r in 1..w {
         for j in 0..w - r {
             for i in 0..w {
-                tr[j * w + i] = lerp_range(tr[j * w + i], tr[(j + 1) * w + i], t[0], t[1]);
+                tr[j * w + i] = Iv::lerp_range(tr[j * w + i], tr[(j + 1) * w + i], t[0], t[1]);
             }
         }
     }
     let col = &mut tr[..w];
     for r in 1..w {
         for i in 0..w - r {
-            col[i] = lerp_range(col[i], col[i + 1], s[0], s[1]);
+            col[i] = Iv::lerp_range(col[i], col[i + 1], s[0], s[1]);
         }
     }
     col[0]
@@ -290,37 +290,17 @@ fn eval_box_with(p: &[Iv], m: usize, n: usize, s: [f64; 2], t: [f64; 2], col: &m
         row[..=n].copy_from_slice(line);
         for k in 1..=n {
             for j in 0..=n - k {
-                row[j] = lerp_range(row[j], row[j + 1], t[0], t[1]);
+                row[j] = Iv::lerp_range(row[j], row[j + 1], t[0], t[1]);
             }
         }
         col[i] = row[0];
     }
     for k in 1..=m {
         for i in 0..=m - k {
-            col[i] = lerp_range(col[i], col[i + 1], s[0], s[1]);
+            col[i] = Iv::lerp_range(col[i], col[i + 1], s[0], s[1]);
         }
     }
     col[0]
-}
-
-/// [`Iv::lerp_range`], inlined into the unrolled de Casteljau above (the
-/// same operations, so the same floats).
-#[inline(always)]
-fn lerp_range(a: Iv, b: Iv, t0: f64, t1: f64) -> Iv {
-    let unit = |t: f64| (0.0..=1.0).contains(&t);
-    if t0 == t1 {
-        return if unit(t0) {
-            Iv::lerp(a, b, t0)
-        } else {
-            Iv::lerp_any(a, b, t0)
-        };
-    }
-    let (x, y) = if unit(t0) && unit(t1) {
-        (Iv::lerp(a, b, t0), Iv::lerp(a, b, t1))
-    } else {
-        (Iv::lerp_any(a, b, t0), Iv::lerp_any(a, b, t1))
-    };
-    x.hull(y)
 }
 
 #[cfg(test)]

@@ -48,6 +48,7 @@
 //! precision whose widths are within [`CLEAN`] of the box's magnitudes.
 
 use super::net::Shape;
+use super::spans::clip_gamma;
 use crate::poly::dyadic::dyadic;
 use crate::scalar::eft::{two_prod, two_sum, Dd};
 use crate::scalar::iv::{self, Iv};
@@ -88,18 +89,11 @@ impl DdNet {
     /// width of the rest's tightest enclosure. `None` if every coefficient
     /// is 0 or a part is not finite.
     fn new(c: &[BigRational]) -> Option<Self> {
-        let bits = |q: &BigRational| q.numer().bits() as i64 - q.denom().bits() as i64;
-        let e = c.iter().filter(|q| !q.is_zero()).map(bits).max()?;
-        let scale = |q: &BigRational| {
-            if e >= 0 {
-                BigRational::new_raw(q.numer().clone(), q.denom() << e as usize)
-            } else {
-                BigRational::new_raw(q.numer() << (-e) as usize, q.denom().clone())
-            }
-        };
+        let e = top_exponent(c)?;
         let (mut out, mut rad, mut mag) = (Vec::with_capacity(c.len()), 0.0f64, 0.0f64);
         for q in c {
-            let q = scale(q);
+            let (num, den) = times_pow2(q, -e);
+            let q = BigRational::new_raw(num, den);
             let h = rational_to_f64(&q);
             let rest = rational_to_interval(&(&q - BigRational::from_float(h)?));
             let (h, l) = two_sum(h, rest.inf());
@@ -264,17 +258,11 @@ impl BigSystem {
             return None;
         }
         let fixed = |c: &[BigRational]| -> Option<Vec<BigInt>> {
-            let size = |q: &BigRational| q.numer().bits() as i64 - q.denom().bits() as i64;
-            let e = c.iter().filter(|q| !q.is_zero()).map(size).max()?;
-            let s = bits as i64 - e;
+            let s = bits as i64 - top_exponent(c)?;
             Some(
                 c.iter()
                     .map(|q| {
-                        let (num, den) = if s >= 0 {
-                            (q.numer() << s as usize, q.denom().clone())
-                        } else {
-                            (q.numer().clone(), q.denom() << (-s) as usize)
-                        };
+                        let (num, den) = times_pow2(q, s);
                         num.div_floor(&den)
                     })
                     .collect(),
@@ -451,38 +439,17 @@ impl<const N: usize> FixedPoint for Fx<N> {
 /// direction `d` to `[α, 1]` and then to the first `γ` of that, each step
 /// `X + ⌊T (Y − X) / 2ᵏ⌋` (module docs). `None` for a non-finite parameter.
 fn restrict_fixed<T: FixedPoint>(c: &mut [T], m: usize, n: usize, d: usize, alpha: f64, gamma: f64) -> Option<()> {
-    let w = n + 1;
-    let k = if d == 0 { m } else { n };
-    let (count, stride, step) = if d == 0 { (w, w, 1) } else { (m + 1, 1, w) };
-    let at = |line: usize, i: usize| line * step + i * stride;
     let mut z = c.first()?.clone();
     let frac = |x: f64| -> Option<(u64, usize)> {
-        // τ ∈ (0, 1) is T·2⁻ᵏ with T < 2⁵³, k ≥ 0.
+        // τ ∈ [0, 1] is T·2⁻ᵏ with T ≤ 2⁵³, k ≥ 0.
         let (t, e) = dyadic(x)?;
         Some((t.to_u64()?, usize::try_from(e).ok()?))
     };
-    if alpha > 0.0 {
-        let (t, sh) = frac(alpha)?;
-        for r in 1..=k {
-            for i in 0..=k - r {
-                for line in 0..count {
-                    let (a, b) = (at(line, i), at(line, i + 1));
-                    T::step(c, a, b, a, t, sh, &mut z);
-                }
-            }
-        }
-    }
-    if gamma < 1.0 {
-        let (t, sh) = frac(gamma)?;
-        for r in 1..=k {
-            for i in (r..=k).rev() {
-                for line in 0..count {
-                    let (a, b) = (at(line, i - 1), at(line, i));
-                    T::step(c, a, b, b, t, sh, &mut z);
-                }
-            }
-        }
-    }
+    let taus = [frac(alpha)?, frac(gamma)?];
+    de_casteljau_restrict(c, m, n, d, alpha, gamma, |c, a, b, into, pass| {
+        let (t, k) = taus[pass];
+        T::step(c, a, b, into, t, k, &mut z);
+    });
     Some(())
 }
 
@@ -496,6 +463,24 @@ fn restrict_fx<const N: usize>(c: &[BigInt], m: usize, n: usize, params: &[(f64,
     Some(x.into_iter().map(Fx::to_big).collect())
 }
 
+/// `e` with every non-zero `|q|` of `c` below `2^(e + 1)` (bit lengths of
+/// numerator less denominator); `None` if every coefficient is 0.
+fn top_exponent(c: &[BigRational]) -> Option<i64> {
+    c.iter()
+        .filter(|q| !q.is_zero())
+        .map(|q| q.numer().bits() as i64 - q.denom().bits() as i64)
+        .max()
+}
+
+/// Numerator and denominator of `q · 2^s`, unreduced.
+fn times_pow2(q: &BigRational, s: i64) -> (BigInt, BigInt) {
+    if s >= 0 {
+        (q.numer() << s as usize, q.denom().clone())
+    } else {
+        (q.numer().clone(), q.denom() << (-s) as usize)
+    }
+}
+
 /// The box of the unit square reached from `outer` by the floats `(α, γ)`
 /// of a clip per direction, and its endpoints' enclosures; `None` if
 /// `outer` misses the square.
@@ -507,12 +492,8 @@ fn restart_box(outer: [[f64; 2]; 2]) -> Option<([(f64, f64); 2], Ends)> {
         if lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
             return None;
         }
-        // As `spans::clip`: [α, α + (1 − α)γ] ⊇ [lo, hi].
-        let gamma = if hi >= 1.0 {
-            1.0
-        } else {
-            ((hi - lo).next_up() / (1.0 - lo).next_down()).next_up().min(1.0)
-        };
+        // As a clip: [α, α + (1 − α)γ] ⊇ [lo, hi].
+        let gamma = clip_gamma(lo, hi);
         params[d] = (lo, gamma);
         let a = Iv::point(lo);
         bx[d] = [
@@ -551,19 +532,39 @@ fn lerp_dd(x: Dd, y: Dd, tau: f64) -> Dd {
 }
 
 /// The net `c` (bidegree `(m, n)`, row-major) restricted in direction `d`
-/// to `[α, 1]` and then to the first `γ` of that.
+/// to `[α, 1]` and then to the first `γ` of that, in double-double.
 fn restrict(c: &mut [Dd], m: usize, n: usize, d: usize, alpha: f64, gamma: f64) {
+    let taus = [alpha, gamma];
+    de_casteljau_restrict(c, m, n, d, alpha, gamma, |c, a, b, into, pass| {
+        c[into] = lerp_dd(c[a], c[b], taus[pass]);
+    });
+}
+
+/// The de Casteljau steps that restrict the net `c` (bidegree `(m, n)`,
+/// row-major) in direction `d` to `[α, 1]` (if `α > 0`; pass 0) and then
+/// to the first `γ` of that (if `γ < 1`; pass 1): `step(c, a, b, into,
+/// pass)` sets `c[into]` (`a` in pass 0, `b` in pass 1) to `c[a] +
+/// τ (c[b] − c[a])` for that pass's `τ`. Whole rows at once in `u` (index
+/// `i·w + j` over `j`), one row at a time in `v`.
+fn de_casteljau_restrict<T>(
+    c: &mut [T],
+    m: usize,
+    n: usize,
+    d: usize,
+    alpha: f64,
+    gamma: f64,
+    mut step: impl FnMut(&mut [T], usize, usize, usize, usize),
+) {
     let w = n + 1;
     let k = if d == 0 { m } else { n };
-    // Lines: whole rows at once in u (index i·w + j over j), one row in v.
-    let (count, stride, step) = if d == 0 { (w, w, 1) } else { (m + 1, 1, w) };
-    let at = |line: usize, i: usize| line * step + i * stride;
+    let (count, stride, jump) = if d == 0 { (w, w, 1) } else { (m + 1, 1, w) };
+    let at = |line: usize, i: usize| line * jump + i * stride;
     if alpha > 0.0 {
         for r in 1..=k {
             for i in 0..=k - r {
                 for line in 0..count {
                     let (a, b) = (at(line, i), at(line, i + 1));
-                    c[a] = lerp_dd(c[a], c[b], alpha);
+                    step(c, a, b, a, 0);
                 }
             }
         }
@@ -573,7 +574,7 @@ fn restrict(c: &mut [Dd], m: usize, n: usize, d: usize, alpha: f64, gamma: f64) 
             for i in (r..=k).rev() {
                 for line in 0..count {
                     let (a, b) = (at(line, i - 1), at(line, i));
-                    c[b] = lerp_dd(c[a], c[b], gamma);
+                    step(c, a, b, b, 1);
                 }
             }
         }

@@ -510,7 +510,8 @@ impl Runner {
         if w[0].max(w[1]) < self.opts.eps {
             // A box that clipped down to `eps` while rounding swamped it
             // is recomputed first: its Krawczyk test may then succeed.
-            if let Some(fresh) = self.try_restart(&mut node) {
+            let noisy = self.swamped(&node);
+            if let Some(fresh) = self.try_restart(&mut node, noisy) {
                 return Step::Continue(fresh);
             }
             self.leaf(&node);
@@ -578,16 +579,15 @@ impl Runner {
             }
         }
         let w = self.rel_width(&node);
-        // (Only exact input has anything to restart from or test exactly.)
-        if let Some(fresh) = self.try_restart(&mut node) {
+        let noisy = self.swamped(&node);
+        if let Some(fresh) = self.try_restart(&mut node, noisy) {
             return Step::Continue(fresh);
         }
         // Rounding stalls a box at any size, two close roots only a wide
         // one: a clean box is tried exactly only once it is small.
-        let noisy = self.problem.exact.is_some() && swamped(&node.c, self.shape);
         let below = if noisy { EXACT_BELOW } else { EXACT_CLEAN_BELOW };
         if w[0].max(w[1]) < below && 4.0 * w[0].max(w[1]) <= node.exact_w {
-            if let Some(done) = self.try_exact(&node) {
+            if let Some(done) = self.try_exact(&node, noisy) {
                 return done;
             }
             node.exact_w = w[0].max(w[1]);

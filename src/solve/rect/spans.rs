@@ -226,14 +226,7 @@ pub(super) fn keep_aspect(spans: &mut [(f64, f64); 2], w: [f64; 2]) {
 /// Restricts the node to `[α, β]` in direction `d` (`rect` docs: exact
 /// sub-box through float split parameters).
 pub(super) fn clip(node: &mut Node, sh: Shape, d: usize, alpha: f64, beta: f64) {
-    // γ ≥ (β − α)/(1 − α), so the kept part [α, α + (1 − α)γ] ⊇ [α, β].
-    let gamma = if beta >= 1.0 {
-        1.0
-    } else {
-        ((beta - alpha).next_up() / (1.0 - alpha).next_down())
-            .next_up()
-            .min(1.0)
-    };
+    let gamma = clip_gamma(alpha, beta);
     restrict_all(&mut node.c, sh, d, alpha, gamma);
     let [lo, hi] = node.bx[d];
     // Convex combinations: the endpoint enclosures never grow wider than
@@ -242,6 +235,18 @@ pub(super) fn clip(node: &mut Node, sh: Shape, d: usize, alpha: f64, beta: f64) 
     let new_hi = if gamma < 1.0 { Iv::lerp(new_lo, hi, gamma) } else { hi };
     node.bx[d] = [new_lo, new_hi];
     node.key = None;
+}
+
+/// The float `γ ≥ (β − α)/(1 − α)` (1 if `β ≥ 1`), so that the part
+/// `[α, α + (1 − α)γ]` a clip keeps holds `[α, β]`.
+pub(super) fn clip_gamma(alpha: f64, beta: f64) -> f64 {
+    if beta >= 1.0 {
+        1.0
+    } else {
+        ((beta - alpha).next_up() / (1.0 - alpha).next_down())
+            .next_up()
+            .min(1.0)
+    }
 }
 
 /// Every polynomial of the node restricted in direction `d` to `[α, 1]`

@@ -536,14 +536,21 @@ impl ExactSystem {
     /// proves a multiple root, and near one the exact enclosures (whose
     /// rationals grow with every product) are the whole cost.
     pub fn certify(&self, bx: Box2) -> Verdict<Box2, ()> {
+        match self.certify_floats(bx) {
+            (Verdict::Undecided(()), true) if !self.nearly_singular(bx) => exact::certify(self, bx),
+            (v, _) => v,
+        }
+    }
+
+    /// Exact Krawczyk with the Jacobian in `f64` intervals ([`Fast`]), and
+    /// whether rounding visibly limited that Jacobian.
+    fn certify_floats(&self, bx: Box2) -> (Verdict<Box2, ()>, bool) {
         let fast = Fast {
             sys: self,
             lossy: std::cell::Cell::new(false),
         };
-        match exact::certify(&fast, bx) {
-            Verdict::Undecided(()) if fast.lossy.get() && !self.nearly_singular(bx) => exact::certify(self, bx),
-            v => v,
-        }
+        let v = exact::certify(&fast, bx);
+        (v, fast.lossy.get())
     }
 
     /// Whether one of the simplest points of `bx` ([`ExactSystem::rational_root`]'s
@@ -570,11 +577,7 @@ impl ExactSystem {
     /// unbounded). For callers whose own float work is clean, where a
     /// failure means several roots or a multiple one, not rounding.
     pub(crate) fn certify_fast(&self, bx: Box2) -> Verdict<Box2, ()> {
-        let fast = Fast {
-            sys: self,
-            lossy: std::cell::Cell::new(false),
-        };
-        exact::certify(&fast, bx)
+        self.certify_floats(bx).0
     }
 
     /// Whether the Jacobian at the centre of `bx`, estimated in `f64`, is

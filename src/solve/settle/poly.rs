@@ -9,6 +9,7 @@ use crate::scalar::iv::Iv;
 use crate::scalar::rational_interval::RI;
 use crate::scalar::rational_to_interval;
 use crate::solve::krawczyk::Bivariate;
+use crate::solve::nd::tensor::eval_box;
 use inari::{interval, Interval};
 use num_bigint::BigInt;
 use num_traits::{One, ToPrimitive};
@@ -43,19 +44,8 @@ impl FPoly {
                 // De Casteljau with interval parameters (each step encloses
                 // its values for every parameter in the range), in [`Iv`].
                 let (m, n) = t.degree();
-                let (u, v) = ([u.inf(), u.sup()], [v.inf(), v.sup()]);
-                let mut c: Vec<Iv> = t.coeffs().iter().map(|x| Iv::new(x.inf(), x.sup())).collect();
-                let at = |line: &mut [Iv], [t0, t1]: [f64; 2]| {
-                    for r in (1..line.len()).rev() {
-                        for j in 0..r {
-                            line[j] = Iv::lerp_range(line[j], line[j + 1], t0, t1);
-                        }
-                    }
-                    line[0]
-                };
-                let mut col: Vec<Iv> = c.chunks_exact_mut(n + 1).map(|row| at(row, v)).collect();
-                debug_assert_eq!(col.len(), m + 1);
-                let x = at(&mut col, u);
+                let c: Vec<Iv> = t.coeffs().iter().map(|x| Iv::new(x.inf(), x.sup())).collect();
+                let x = eval_box(&c, &[m, n], &[[u.inf(), u.sup()], [v.inf(), v.sup()]]);
                 interval!(x.lo, x.hi).unwrap_or(Interval::ENTIRE)
             }
         }

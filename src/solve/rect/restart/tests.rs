@@ -62,23 +62,10 @@ fn restriction_encloses_the_exact_one_tightly() {
         for d in 0..2 {
             assert!(bx[d][0].lo <= outer[d][0] && bx[d][1].hi >= outer[d][1]);
         }
-        let params = [0, 1].map(|d| {
-            let lo = outer[d][0];
-            let gamma = if outer[d][1] >= 1.0 {
-                1.0
-            } else {
-                ((outer[d][1] - lo).next_up() / (1.0 - lo).next_down())
-                    .next_up()
-                    .min(1.0)
-            };
-            (lo, gamma)
-        });
+        let params = params(outer);
         for (k, poly) in [&f, &g].iter().enumerate() {
             let exact = exact_restrict(poly, m, n, params);
-            let scale = {
-                let bits = |q: &BigRational| q.numer().bits() as i64 - q.denom().bits() as i64;
-                poly.iter().filter(|q| !q.is_zero()).map(bits).max().unwrap()
-            };
+            let scale = top_exponent(poly).unwrap();
             let mag = exact.iter().map(|x| rational_to_f64(x).abs()).fold(0.0, f64::max);
             for (i, e) in exact.iter().enumerate() {
                 let x: Iv = c[k * sh.len + i];

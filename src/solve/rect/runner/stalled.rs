@@ -5,14 +5,20 @@
 use super::*;
 
 impl Runner {
-    /// The node restarted ([`Runner::restart`]) if the input is exact, its
-    /// coefficients are [`swamped`], and it is a quarter as wide as at its
-    /// last restart; a failed restart is recorded in the node
-    /// (`restart_failed`, and its width as `restart_w`).
-    pub(super) fn try_restart(&mut self, node: &mut Node) -> Option<Node> {
+    /// Whether the input is exact and rounding has [`swamped`] the node's
+    /// coefficients (only exact input has anything to restart from).
+    pub(super) fn swamped(&self, node: &Node) -> bool {
+        self.problem.exact.is_some() && swamped(&node.c, self.shape)
+    }
+
+    /// The node restarted ([`Runner::restart`]) if it is `swamped`
+    /// ([`Runner::swamped`]) and a quarter as wide as at its last restart; a
+    /// failed restart is recorded in the node (`restart_failed`, and its
+    /// width as `restart_w`).
+    pub(super) fn try_restart(&mut self, node: &mut Node, swamped: bool) -> Option<Node> {
         let w = self.rel_width(node);
         let w = w[0].max(w[1]);
-        if self.problem.exact.is_none() || 4.0 * w > node.restart_w || !swamped(&node.c, self.shape) {
+        if !swamped || 4.0 * w > node.restart_w {
             return None;
         }
         let fresh = self.restart(node);
@@ -53,7 +59,8 @@ impl Runner {
         Some(fresh)
     }
 
-    /// A stalled box tried by exact Krawczyk (exact input only):
+    /// A stalled box tried by exact Krawczyk (exact input only; `swamped`
+    /// as [`Runner::swamped`]):
     /// `Some(Done)` if that settles it — a unique root of a box around it
     /// lies inside the node (recorded) or outside it, or there is none —
     /// and `None` otherwise (also without an exact system).
@@ -70,12 +77,12 @@ impl Runner {
     /// ([`ExactSystem::certify_fast`]): a clean one stalled on several roots
     /// or a multiple one, not on rounding, and a swamped one will be
     /// restarted once a quarter as wide.
-    pub(super) fn try_exact(&mut self, node: &Node) -> Option<Step> {
+    pub(super) fn try_exact(&mut self, node: &Node, swamped: bool) -> Option<Step> {
         let sys = self.problem.exact.clone()?;
         self.stats.krawczyk_calls += 1;
         let o = node.outer();
         let bx = Box2 { u: o[0], v: o[1] };
-        let verdict = if node.restart_failed && swamped(&node.c, self.shape) {
+        let verdict = if node.restart_failed && swamped {
             sys.certify(bx)
         } else {
             sys.certify_fast(bx)
