@@ -238,6 +238,38 @@ fn ray_t_range() {
     );
 }
 
+/// A patch file's numbers are read as the exact binary numbers they name
+/// (correctly rounded, as `str::parse` reads `--origin`): the corner
+/// `x = 0.23394803155649946` (which a fast, not correctly rounded parser
+/// reads one ulp low) meets a vertical ray at that `x` exactly on the edge
+/// `u = 1`, a certified hit; one ulp beyond the edge, no hit.
+#[test]
+fn patch_numbers_are_read_exactly() {
+    let dir = TempDir::new("ray_exact_numbers");
+    let x = "0.23394803155649946";
+    let patch = dir.file(
+        "edge.json",
+        &format!(r#"{{"type":"tensor","degree":[1,1],"points":[[0,0,0],[0,1,0],[{x},0,0],[{x},1,0]]}}"#),
+    );
+    let hits = |x0: f64| -> Vec<Value> {
+        let origin = format!("{x0:e},0.5,1");
+        let v = ok_json(
+            &[
+                "ray", "--patch", &patch, "--origin", &origin, "--dir", "0,0,-1", "--json",
+            ],
+            "",
+        );
+        assert_eq!(v["rays"][0]["complete"], true, "{v}");
+        v["rays"][0]["hits"].as_array().unwrap().clone()
+    };
+    let x0: f64 = x.parse().unwrap();
+    let on = hits(x0);
+    assert_eq!(on.len(), 1, "{on:?}");
+    assert_eq!(on[0]["status"], "certified", "{on:?}");
+    assert_eq!(on[0]["u"], 1.0, "{on:?}");
+    assert!(hits(f64::from_bits(x0.to_bits() + 1)).is_empty());
+}
+
 /// `bernstein --json` output is what `solve --f-bb` reads: the same system
 /// from expressions and from BB files gives the same roots.
 #[test]

@@ -70,6 +70,7 @@ pub use spec::PatchSpec;
 pub use surface::Patch;
 
 use crate::error::{Error, Result};
+use crate::scalar;
 use patch::BezierRef;
 use rayon::prelude::*;
 
@@ -109,6 +110,7 @@ pub fn intersect(patch: &Patch, ray: &Ray, opts: &RayOptions) -> Result<RayOutco
         Patch::Tensor(p) => bezier::intersect_bezier(BezierRef::Tensor(p), ray, opts),
         Patch::Bspline(s) => bspline::intersect_bspline(s, ray, opts),
     }?;
+    let out = into_domain(patch, out);
     // A hit's numbers overflow only where `t ~ |S − o| / |d|` exceeds the
     // largest float (a very short direction): an error, never a NaN or ∞
     // in a hit (JSON would print `null`).
@@ -119,6 +121,67 @@ pub fn intersect(patch: &Patch, ray: &Ray, opts: &RayOptions) -> Result<RayOutco
         )));
     }
     Ok(out)
+}
+
+/// Every hit's box cut to the patch's closed parameter domain, and its
+/// `(u, v)` moved into the cut box, so that every reported parameter lies in
+/// the domain exactly (on a triangle `u + v ≤ 1` in exact arithmetic, not
+/// only after rounding). The hits a box stands for lie in the domain, so
+/// they lie in the cut box; a box that misses the domain altogether stands
+/// for no hit of the patch and is dropped. Point and normal are re-evaluated
+/// where `(u, v)` moved.
+fn into_domain(patch: &Patch, out: RayOutcome) -> RayOutcome {
+    let (ud, vd) = match patch {
+        Patch::Bspline(s) => s.domain(),
+        Patch::Triangle(_) | Patch::Tensor(_) => ([0.0, 1.0], [0.0, 1.0]),
+    };
+    let triangle = matches!(patch, Patch::Triangle(_));
+    let cut = |h: Hit| -> Option<Hit> {
+        let mut bx = h.bx;
+        bx.u = [bx.u[0].max(ud[0]), bx.u[1].min(ud[1])];
+        bx.v = [bx.v[0].max(vd[0]), bx.v[1].min(vd[1])];
+        if triangle {
+            // u ≤ 1 − v_lo and v ≤ 1 − u_lo on the triangle, rounded up.
+            bx.u[1] = bx.u[1].min((scalar::point(1.0) - scalar::point(bx.v[0])).sup());
+            bx.v[1] = bx.v[1].min((scalar::point(1.0) - scalar::point(bx.u[0])).sup());
+        }
+        if !(bx.u[0] <= bx.u[1] && bx.v[0] <= bx.v[1]) {
+            return None;
+        }
+        let mut u = h.u.clamp(bx.u[0], bx.u[1]);
+        let mut v = h.v.clamp(bx.v[0], bx.v[1]);
+        if triangle && (scalar::point(u) + scalar::point(v)).sup() > 1.0 {
+            // 1 − u rounded down: then u + v ≤ 1 exactly.
+            v = (scalar::point(1.0) - scalar::point(u)).inf().max(0.0);
+            if v < bx.v[0] {
+                u = (scalar::point(1.0) - scalar::point(bx.v[0])).inf().max(bx.u[0]);
+                v = bx.v[0];
+            }
+        }
+        let moved = u != h.u || v != h.v;
+        let (point, normal) = if moved {
+            patch.point_and_normal(u, v)
+        } else {
+            (h.point, h.normal)
+        };
+        Some(Hit {
+            u,
+            v,
+            point,
+            normal,
+            bx,
+            ..h
+        })
+    };
+    let keep = |h: RayHits| RayHits {
+        complete: h.complete,
+        hits: h.hits.into_iter().filter_map(cut).collect(),
+    };
+    match out {
+        RayOutcome::Hits(h) => RayOutcome::Hits(keep(h)),
+        RayOutcome::Degenerate(Degeneracy::Unresolved(h)) => RayOutcome::Degenerate(Degeneracy::Unresolved(keep(h))),
+        d @ RayOutcome::Degenerate(Degeneracy::ZeroEquation) => d,
+    }
 }
 
 /// Every number of `h` is finite.
