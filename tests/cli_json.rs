@@ -369,10 +369,12 @@ fn crosscheck_claims() {
     let dir = TempDir::new("crosscheck");
     let patch = dir.file("patch.json", FLAT);
     // Ray 0 hits (0.25, 0.5) at t = 1; ray 1 misses; ray 2 hits (0.1, 0.1) at t = 2.
+    // Ray 0's last three claims have the right (u, v) and a wrong t.
     let rays = dir.file("rays.txt", "0.25 0.5 1 0 0 -1\n5 5 1 0 0 -1\n0.1 0.1 2 0 0 -1\n");
     let claims = dir.file(
         "claims.txt",
-        "# ray u v t\n0 0.25 0.5 1\n0 0.25 0.500000000001 1\n0 0.6 0.2 1\n1 0.5 0.5 3\n",
+        "# ray u v t\n0 0.25 0.5 1\n0 0.25 0.500000000001 1\n0 0.6 0.2 1\n1 0.5 0.5 3\n\
+         0 0.25 0.5 1.001\n0 0.25 0.5 2\n0 0.25 0.5 -1\n",
     );
     let v = ok_json(
         &[
@@ -397,7 +399,10 @@ fn crosscheck_claims() {
             .map(|c| c["verdict"].as_str().unwrap().to_string())
             .collect()
     };
-    assert_eq!(verdicts(0), ["confirmed", "duplicate", "spurious"]);
+    assert_eq!(
+        verdicts(0),
+        ["confirmed", "duplicate", "spurious", "spurious", "spurious", "spurious"]
+    );
     assert_eq!(verdicts(1), ["spurious"]);
     assert!(verdicts(2).is_empty());
     assert_eq!(r[0]["nearest_claimed"], true);
@@ -416,7 +421,7 @@ fn crosscheck_claims() {
             s["missed"].clone(),
             s["true_hits"].clone()
         ],
-        [4, 1, 1, 2, 0, 1, 2].map(Value::from)
+        [7, 1, 1, 5, 0, 1, 2].map(Value::from)
     );
     // A looser tol turns the third claim of ray 0 into... still spurious (0.35 away).
     let v = ok_json(

@@ -30,7 +30,7 @@ pub(super) struct CrosscheckArgs {
     /// CLAIMS.txt ("-" for stdin): one claim per line, "ray_index u v t".
     #[arg(long)]
     claims: String,
-    /// A claim is confirmed when a certified hit's whole (u, v) box lies within this distance (max-norm).
+    /// A claim is confirmed when a certified hit's whole (u, v, t) box lies within this tolerance of it (t relative to max(1, |t|)).
     #[arg(long, default_value_t = 1e-8)]
     tol: f64,
     /// Print JSON instead of text.

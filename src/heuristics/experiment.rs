@@ -22,7 +22,7 @@
 //!
 //! # Verdicts
 //! Every end point of one ray is a claim `(u, v, t)` for
-//! [`classify_with`] (tolerance [`REFEREE_TOL`] in `(u, v)`), all claims of
+//! [`classify_with`] (tolerance [`REFEREE_TOL`] in `(u, v)`, relative in `t`), all claims of
 //! a ray in one call: a claim `confirmed` or `duplicate` (a later start
 //! finding the same hit) has a certified hit within the tolerance. Then:
 //! * [`Verdict::Correct`]: that hit is the proven nearest one (the only

@@ -1,21 +1,24 @@
 //! The referee for rays: hits claimed by a fast solver (a heuristic, a
 //! renderer, a CAD kernel) checked against the certified hits.
 //!
-//! A claim is decided on its `(u, v)` alone, by the rules of
+//! A claim `(u, v, t)` is decided on all three coordinates, by the rules of
 //! [`classify_roots`](crate::solve::classify_roots) against the certified
-//! all-hits answer of the ray: **confirmed** when a certified hit's whole
-//! `(u, v)` box lies within `tol` (max-norm) of the claim and no earlier claim
-//! of the same ray took it; **duplicate** when only hits earlier claims took
-//! lie within `tol` that way; **spurious** when the answer is complete and no
-//! hit region at all (certified or not) comes within `tol`; **undecided**
-//! otherwise. The comparisons are exact. The claim's `t` is carried along,
-//! not judged (a point on the patch fixes its `t` on the ray).
+//! all-hits answer of the ray, "within tolerance" meaning `|Δu| ≤ tol`,
+//! `|Δv| ≤ tol` and `|Δt| ≤ tol·max(1, |t|)` (`t` relative to its size, in
+//! units of the direction as given): **confirmed** when a certified hit's
+//! whole `(u, v, t)` box lies within tolerance of the claim and no earlier
+//! claim of the same ray took it; **duplicate** when only hits earlier
+//! claims took lie within tolerance that way; **spurious** when the answer
+//! is complete and no hit region at all (certified or not) has a point
+//! within tolerance — so a claim with the right `(u, v)` and a wrong `t` is
+//! spurious; **undecided** otherwise. The comparisons are exact.
 
 use super::hit::{Hit, RayHits, RayOutcome};
 use super::query::{Query, Ray, RayOptions};
 use super::surface::Patch;
 use crate::error::Result;
-use crate::solve::referee::{check_tol, missed, referee, Region};
+use crate::scalar::point;
+use crate::solve::referee::{check_tol, missed, referee_n, Region};
 use crate::solve::ClaimVerdict;
 
 /// A claimed hit: parameters `(u, v)` on the patch and the ray parameter `t`.
@@ -26,7 +29,7 @@ pub struct Claim {
     pub u: f64,
     /// Claimed `v`.
     pub v: f64,
-    /// Claimed `t` (reported, not judged).
+    /// Claimed `t` (judged like `u` and `v`, relative to `max(1, |t|)`).
     pub t: f64,
 }
 
@@ -52,7 +55,7 @@ pub struct Classification {
 
 /// Checks `claims` of hits of `ray` with `patch` against the certified
 /// all-hits answer (module docs for the rules), with the default options and
-/// `tol` in `(u, v)` (max-norm; `1e-8` is a good default).
+/// the tolerance `tol` (`1e-8` is a good default).
 ///
 /// Errors: a `tol` that is negative or not finite
 /// ([`Error::InvalidOption`](crate::Error::InvalidOption)).
@@ -63,10 +66,15 @@ pub struct Classification {
 /// use rootclip::solve::ClaimVerdict;
 /// let tri = TriPatch::new(1, vec![DVec3::ZERO, DVec3::X, DVec3::Y], None)?;
 /// let ray = Ray::new(DVec3::new(0.25, 0.5, 1.0), -DVec3::Z)?; // hits (0.25, 0.5) at t = 1
-/// let claims = [Claim { u: 0.25, v: 0.5, t: 1.0 }, Claim { u: 0.9, v: 0.05, t: 1.0 }];
+/// let claims = [
+///     Claim { u: 0.25, v: 0.5, t: 1.0 },
+///     Claim { u: 0.9, v: 0.05, t: 1.0 },
+///     Claim { u: 0.25, v: 0.5, t: 1.001 }, // the right point, the wrong t
+/// ];
 /// let c = classify(&tri.into(), &ray, &claims, 1e-8)?;
 /// assert_eq!(c.claims[0].0, ClaimVerdict::Confirmed);
 /// assert_eq!(c.claims[1].0, ClaimVerdict::Spurious);
+/// assert_eq!(c.claims[2].0, ClaimVerdict::Spurious);
 /// assert_eq!(c.nearest_claimed, Some(true));
 /// # Ok::<(), rootclip::Error>(())
 /// ```
@@ -88,15 +96,20 @@ pub fn classify_with(
     let outcome = super::intersect(patch, ray, &opts)?;
     let complete = outcome.is_complete();
     let hits = outcome.hits().to_vec();
-    let regions: Vec<Region> = hits
+    let regions: Vec<Region<3>> = hits
         .iter()
         .map(|h| Region {
-            bx: crate::solve::Box2::new(h.bx.u, h.bx.v),
+            bx: [h.bx.u, h.bx.v, h.bx.t],
             certified: h.is_certified(),
         })
         .collect();
-    let points: Vec<[f64; 2]> = claims.iter().map(|c| [c.u, c.v]).collect();
-    let verdicts = referee(&points, &regions, complete, tol);
+    let points: Vec<[f64; 3]> = claims.iter().map(|c| [c.u, c.v, c.t]).collect();
+    // tol·max(1, |t|) rounded up (NaN stays NaN: never confirmed).
+    let tols: Vec<[f64; 3]> = claims
+        .iter()
+        .map(|c| [tol, tol, (point(tol) * point(c.t.abs().max(1.0))).sup()])
+        .collect();
+    let verdicts = referee_n(&points, &tols, &regions, complete);
     // Hits are sorted by t, certified or not: map the certified ones.
     let certified: Vec<usize> = (0..hits.len()).filter(|&k| hits[k].is_certified()).collect();
     let confirmed_of = |k: usize| {

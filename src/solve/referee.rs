@@ -26,7 +26,7 @@ use super::{solve, Domain, SolveOptions};
 use crate::error::{Error, Result};
 use crate::poly::Polynomial;
 use num_rational::BigRational;
-use std::cmp::Ordering;
+use num_traits::Signed;
 
 /// What the referee says of one claim (module docs for the rules).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -60,34 +60,52 @@ impl ClaimVerdict {
     }
 }
 
-/// A region of a certified answer: a box, and whether it is a certified root.
+/// A region of a certified answer: a box in `N` coordinates, and whether
+/// it is a certified root.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Region {
-    pub(crate) bx: Box2,
+pub(crate) struct Region<const N: usize = 2> {
+    pub(crate) bx: [[f64; 2]; N],
     pub(crate) certified: bool,
 }
 
+impl Region {
+    /// A region of a bivariate solve.
+    pub(crate) fn of_box(bx: Box2, certified: bool) -> Self {
+        Region {
+            bx: [bx.u, bx.v],
+            certified,
+        }
+    }
+}
+
 /// The verdict of each claim (and the region that confirmed it or that it
-/// duplicates), in the order given; `complete` is the solve's.
-pub(crate) fn referee(
-    claims: &[[f64; 2]],
-    regions: &[Region],
+/// duplicates), in the order given; `complete` is the solve's. Each claim
+/// carries its own tolerances per coordinate (`tol[k][c]` for claim `k`,
+/// coordinate `c`): "within tolerance" means `|Δx_c| ≤ tol_c` in every
+/// coordinate, decided exactly.
+pub(crate) fn referee_n<const N: usize>(
+    claims: &[[f64; N]],
+    tols: &[[f64; N]],
+    regions: &[Region<N>],
     complete: bool,
-    tol: f64,
 ) -> Vec<(ClaimVerdict, Option<usize>)> {
-    let q = |x: f64| BigRational::from_float(x);
-    let tol_q = q(tol);
     let mut taken = vec![false; regions.len()];
     claims
         .iter()
-        .map(|&c| {
-            let Some(tol_q) = &tol_q else {
+        .zip(tols)
+        .map(|(c, tol)| {
+            let Some(tol_q) = tol
+                .iter()
+                .map(|&t| BigRational::from_float(t))
+                .collect::<Option<Vec<_>>>()
+            else {
                 return (ClaimVerdict::Undecided, None);
             };
-            // (far, near) distances of each region from c, exactly.
-            let dist: Vec<Option<(BigRational, BigRational)>> = regions.iter().map(|r| distances(c, &r.bx)).collect();
-            let within = |k: usize| regions[k].certified && dist[k].as_ref().is_some_and(|(far, _)| far <= tol_q);
-            let near_key = |k: &usize| dist[*k].as_ref().map(|(_, near)| near.clone());
+            // Per region: (every point within tol, some point within tol,
+            // scaled distance of the nearest point), exactly.
+            let dist: Vec<Option<Distances>> = regions.iter().map(|r| distances(c, &r.bx, &tol_q)).collect();
+            let within = |k: usize| regions[k].certified && dist[k].as_ref().is_some_and(|d| d.all_within);
+            let near_key = |k: &usize| dist[*k].as_ref().map(|d| d.near.clone());
             let pick = |free: bool| {
                 (0..regions.len())
                     .filter(|&k| within(k) && taken[k] != free)
@@ -100,9 +118,7 @@ pub(crate) fn referee(
             if let Some(k) = pick(false) {
                 return (ClaimVerdict::Duplicate, Some(k));
             }
-            let clear = dist
-                .iter()
-                .all(|d| d.as_ref().is_some_and(|(_, near)| near.cmp(tol_q) == Ordering::Greater));
+            let clear = dist.iter().all(|d| d.as_ref().is_some_and(|d| !d.some_within));
             if complete && clear {
                 (ClaimVerdict::Spurious, None)
             } else {
@@ -112,21 +128,49 @@ pub(crate) fn referee(
         .collect()
 }
 
-/// The largest and the smallest max-norm distance from `c` to a point of the
-/// closed box, exactly; `None` if something is not finite.
-fn distances(c: [f64; 2], bx: &Box2) -> Option<(BigRational, BigRational)> {
+/// [`referee_n`] for points `(u, v)` with one tolerance `tol` (max-norm).
+pub(crate) fn referee(
+    claims: &[[f64; 2]],
+    regions: &[Region],
+    complete: bool,
+    tol: f64,
+) -> Vec<(ClaimVerdict, Option<usize>)> {
+    referee_n(claims, &vec![[tol; 2]; claims.len()], regions, complete)
+}
+
+/// How a closed box lies around a claim, exactly.
+struct Distances {
+    /// Every point of the box is within tolerance of the claim.
+    all_within: bool,
+    /// Some point of the box is.
+    some_within: bool,
+    /// The largest of the per-coordinate gaps from the claim to the box,
+    /// each divided by its tolerance (`0` inside; ranks the boxes within
+    /// tolerance).
+    near: BigRational,
+}
+
+/// How the closed box `bx` lies around the claim `c` with tolerances `tol`;
+/// `None` if a number is not finite.
+fn distances<const N: usize>(c: &[f64; N], bx: &[[f64; 2]; N], tol: &[BigRational]) -> Option<Distances> {
     let q = |x: f64| BigRational::from_float(x);
     let zero = BigRational::from_integer(0.into());
-    let mut far = zero.clone();
-    let mut near = zero.clone();
-    for (x, [lo, hi]) in [(c[0], bx.u), (c[1], bx.v)] {
+    let mut out = Distances {
+        all_within: true,
+        some_within: true,
+        near: zero.clone(),
+    };
+    for ((&x, &[lo, hi]), tol) in c.iter().zip(bx).zip(tol) {
         let (x, lo, hi) = (q(x)?, q(lo)?, q(hi)?);
-        let below = &lo - &x;
-        let above = &x - &hi;
-        far = far.max((&x - &lo).max(&hi - &x));
-        near = near.max(below.max(above).max(zero.clone()));
+        let far = (&x - &lo).max(&hi - &x);
+        let near = (&lo - &x).max(&x - &hi).max(zero.clone());
+        out.all_within &= far <= *tol;
+        out.some_within &= near <= *tol;
+        // (At tolerance 0 a box with a gap is never picked: no ranking.)
+        let scaled = if tol.is_positive() { &near / tol } else { near };
+        out.near = out.near.max(scaled);
     }
-    Some((far, near))
+    Some(out)
 }
 
 /// The referee's answer for a bivariate system.
@@ -172,18 +216,9 @@ pub fn classify_roots(
     let regions: Vec<Region> = solution
         .roots
         .iter()
-        .map(|r| Region {
-            bx: r.bx,
-            certified: true,
-        })
-        .chain(solution.clusters.iter().map(|c| Region {
-            bx: c.bx,
-            certified: false,
-        }))
-        .chain(solution.leftovers.iter().map(|l| Region {
-            bx: l.bx,
-            certified: false,
-        }))
+        .map(|r| Region::of_box(r.bx, true))
+        .chain(solution.clusters.iter().map(|c| Region::of_box(c.bx, false)))
+        .chain(solution.leftovers.iter().map(|l| Region::of_box(l.bx, false)))
         .collect();
     let claims = referee(claims, &regions, solution.complete, tol);
     let missed = missed(&claims, solution.roots.len());
@@ -223,10 +258,7 @@ mod tests {
     use super::*;
 
     fn region(u: [f64; 2], v: [f64; 2], certified: bool) -> Region {
-        Region {
-            bx: Box2::new(u, v),
-            certified,
-        }
+        Region::of_box(Box2::new(u, v), certified)
     }
 
     #[test]
