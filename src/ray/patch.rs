@@ -434,6 +434,24 @@ impl TensorPatch {
     pub(crate) fn inet(&self) -> &Net<TensorBezier<Interval>> {
         &self.inet
     }
+
+    /// An enclosure of a normal direction `N = (X_u W − X W_u) × (X_v W − X W_v)`
+    /// (a positive multiple `W⁴` of `S_u × S_v`, for the homogeneous net
+    /// `(X, W)`) over the parameter box `u × v`, by interval de Casteljau on
+    /// the net and its derivative nets.
+    pub(crate) fn normal_enclosure(&self, u: Interval, v: Interval) -> [Interval; 3] {
+        let c = &self.inet.c;
+        let jet: [[Interval; 3]; 4] =
+            std::array::from_fn(|k| [c[k].value(u, v), c[k].d_u().value(u, v), c[k].d_v().value(u, v)]);
+        let w = jet[3];
+        let tangent = |a: usize| -> [Interval; 3] { std::array::from_fn(|k| jet[k][a] * w[0] - jet[k][0] * w[a]) };
+        let (su, sv) = (tangent(1), tangent(2));
+        [
+            su[1] * sv[2] - su[2] * sv[1],
+            su[2] * sv[0] - su[0] * sv[2],
+            su[0] * sv[1] - su[1] * sv[0],
+        ]
+    }
 }
 
 /// Degrees above this are refused (the solver's work grows like `n⁴`).

@@ -216,20 +216,17 @@ pub fn intersect_surfaces(a: &Patch, b: &Patch, opts: &SsiOptions) -> Result<Int
     for (x, mx) in &pa {
         for (y, my) in &pb {
             let part = intersect_pair(x, y, opts);
-            let map = |p: &mut CurvePoint| {
-                p.a = mx(p.a);
-                p.b = my(p.b);
-            };
             out.complete &= part.complete;
             for mut br in part.branches {
-                br.points.iter_mut().for_each(map);
+                for p in &mut br.points {
+                    p.a = mx.point(p.a);
+                    p.b = my.point(p.b);
+                }
                 out.branches.push(br);
             }
             for mut s in part.singular {
-                let (a0, a1) = (mx([s.a[0][0], s.a[1][0]]), mx([s.a[0][1], s.a[1][1]]));
-                let (b0, b1) = (my([s.b[0][0], s.b[1][0]]), my([s.b[0][1], s.b[1][1]]));
-                s.a = [[a0[0], a1[0]], [a0[1], a1[1]]];
-                s.b = [[b0[0], b1[0]], [b0[1], b1[1]]];
+                s.a = mx.region(s.a);
+                s.b = my.region(s.b);
                 out.singular.push(s);
             }
             out.stats.boxes += part.stats.boxes;
@@ -241,27 +238,88 @@ pub fn intersect_surfaces(a: &Patch, b: &Patch, opts: &SsiOptions) -> Result<Int
     Ok(out)
 }
 
-type ParamMap = Box<dyn Fn([f64; 2]) -> [f64; 2]>;
+/// The map from a Bézier piece's `[0, 1]²` (where the tracer works) to the
+/// patch's parameters.
+#[derive(Clone, Copy, Debug)]
+enum PieceMap {
+    /// A tensor patch: the identity.
+    Identity,
+    /// A B-spline piece on `ur × vr`: `(u, v) = (u₀ + x(u₁ − u₀), v₀ + y(v₁ − v₀))`.
+    Span([f64; 2], [f64; 2]),
+    /// A triangle as a tensor patch: `(u, v) = (σ(1 − τ), στ)`.
+    Triangle,
+}
+
+impl PieceMap {
+    /// The image of a point, in the patch's closed domain exactly (the
+    /// tracer's points may stray by rounding; on a triangle `u + v ≤ 1`
+    /// holds in exact arithmetic).
+    fn point(self, x: [f64; 2]) -> [f64; 2] {
+        let [s, t] = x.map(|c| c.clamp(0.0, 1.0));
+        match self {
+            PieceMap::Identity => [s, t],
+            PieceMap::Span(ur, vr) => [
+                (ur[0] + s * (ur[1] - ur[0])).clamp(ur[0], ur[1]),
+                (vr[0] + t * (vr[1] - vr[0])).clamp(vr[0], vr[1]),
+            ],
+            PieceMap::Triangle => {
+                let u = (s * (1.0 - t)).clamp(0.0, 1.0);
+                let v = (s * t).clamp(0.0, 1.0);
+                // u + v ≤ 1 exactly: else v = 1 − u rounded down.
+                let one = crate::scalar::point(1.0);
+                if (crate::scalar::point(u) + crate::scalar::point(v)).sup() > 1.0 {
+                    [u, (one - crate::scalar::point(u)).inf().max(0.0)]
+                } else {
+                    [u, v]
+                }
+            }
+        }
+    }
+
+    /// A box holding the image of the region `r = [[x_lo, x_hi], [y_lo,
+    /// y_hi]]` (cut to `[0, 1]²`), rounded outward: on a triangle `u =
+    /// σ(1 − τ)` rises with `σ` and falls with `τ`, `v = στ` rises with both.
+    fn region(self, r: [[f64; 2]; 2]) -> [[f64; 2]; 2] {
+        use crate::scalar::point;
+        let [[s0, s1], [t0, t1]] = r.map(|[lo, hi]| [lo.clamp(0.0, 1.0), hi.clamp(0.0, 1.0)]);
+        let lin = |x0: f64, x1: f64, a: f64, b: f64| {
+            let (lo, hi) = (point(a), point(b));
+            [
+                (point(x0) + (point(x1) - point(x0)) * lo).inf().max(x0),
+                (point(x0) + (point(x1) - point(x0)) * hi).sup().min(x1),
+            ]
+        };
+        match self {
+            PieceMap::Identity => [[s0, s1], [t0, t1]],
+            PieceMap::Span(ur, vr) => [lin(ur[0], ur[1], s0, s1), lin(vr[0], vr[1], t0, t1)],
+            PieceMap::Triangle => {
+                let one = point(1.0);
+                [
+                    [
+                        (point(s0) * (one - point(t1))).inf().max(0.0),
+                        (point(s1) * (one - point(t0))).sup().min(1.0),
+                    ],
+                    [
+                        (point(s0) * point(t0)).inf().max(0.0),
+                        (point(s1) * point(t1)).sup().min(1.0),
+                    ],
+                ]
+            }
+        }
+    }
+}
 
 /// The Bézier pieces of a patch with the map from a piece's `[0, 1]²` to
 /// the patch's parameters.
-fn pieces(p: &Patch) -> Result<Vec<(TensorPatch, ParamMap)>> {
+fn pieces(p: &Patch) -> Result<Vec<(TensorPatch, PieceMap)>> {
     match p {
-        Patch::Tensor(t) => Ok(vec![(t.clone(), Box::new(|x| x))]),
+        Patch::Tensor(t) => Ok(vec![(t.clone(), PieceMap::Identity)]),
         Patch::Bspline(s) => Ok(s
             .pieces()
             .iter()
-            .map(|piece| {
-                let (ur, vr) = (piece.u_range(), piece.v_range());
-                let map: ParamMap =
-                    Box::new(move |x: [f64; 2]| [ur[0] + x[0] * (ur[1] - ur[0]), vr[0] + x[1] * (vr[1] - vr[0])]);
-                (piece.patch().clone(), map)
-            })
+            .map(|piece| (piece.patch().clone(), PieceMap::Span(piece.u_range(), piece.v_range())))
             .collect()),
-        Patch::Triangle(t) => {
-            let map: ParamMap = Box::new(|x: [f64; 2]| [x[0] * (1.0 - x[1]), x[0] * x[1]]);
-            Ok(vec![(triangle_as_tensor(t)?, map)])
-        }
+        Patch::Triangle(t) => Ok(vec![(triangle_as_tensor(t)?, PieceMap::Triangle)]),
     }
 }
 
@@ -315,6 +373,28 @@ fn triangle_as_tensor(p: &TriPatch) -> Result<TensorPatch> {
     Ok(t)
 }
 
+/// Whether the region `ra` of `a` and `rb` of `b` may be a tangential
+/// contact: the normals at the regions' centres are parallel within `10⁻⁶`
+/// (in `f64`, the evidence), and the enclosure of `N_a × N_b` over the
+/// regions contains zero (no proof that the normals differ anywhere in them:
+/// a region proven transversal is never called tangential).
+fn may_touch(a: &TensorPatch, ra: [[f64; 2]; 2], b: &TensorPatch, rb: [[f64; 2]; 2]) -> bool {
+    let mid = |r: [f64; 2]| (0.5 * r[0] + 0.5 * r[1]).clamp(0.0, 1.0);
+    let (na, nb) = (a.normal(mid(ra[0]), mid(ra[1])), b.normal(mid(rb[0]), mid(rb[1])));
+    if na.cross(nb).length() > 1e-6 || na == DVec3::ZERO || nb == DVec3::ZERO {
+        return false;
+    }
+    let iv = |r: [f64; 2]| crate::scalar::interval(r[0].max(0.0), r[1].min(1.0));
+    let ea = a.normal_enclosure(iv(ra[0]), iv(ra[1]));
+    let eb = b.normal_enclosure(iv(rb[0]), iv(rb[1]));
+    let cross = [
+        ea[1] * eb[2] - ea[2] * eb[1],
+        ea[2] * eb[0] - ea[0] * eb[2],
+        ea[0] * eb[1] - ea[1] * eb[0],
+    ];
+    cross.iter().all(|c| c.contains(0.0))
+}
+
 fn split(b: &Box4) -> ([[f64; 2]; 2], [[f64; 2]; 2]) {
     ([b[0], b[1]], [b[2], b[3]])
 }
@@ -351,10 +431,7 @@ fn intersect_pair(a: &TensorPatch, b: &TensorPatch, opts: &SsiOptions) -> Inters
     for u in group(&starts.undecided) {
         out.complete = false;
         let (ra, rb) = split(&u);
-        let c = u.map(|[lo, hi]| 0.5 * lo + 0.5 * hi);
-        let (_, _, na) = a.frame(c[0].clamp(0.0, 1.0), c[1].clamp(0.0, 1.0));
-        let (_, _, nb) = b.frame(c[2].clamp(0.0, 1.0), c[3].clamp(0.0, 1.0));
-        let tangential = na.cross(nb).length() <= 1e-6 * na.length() * nb.length();
+        let tangential = may_touch(a, ra, b, rb);
         out.singular.push(Singular {
             kind: if tangential {
                 SingularKind::TangentialContact
@@ -364,7 +441,7 @@ fn intersect_pair(a: &TensorPatch, b: &TensorPatch, opts: &SsiOptions) -> Inters
             a: ra,
             b: rb,
             reason: if tangential {
-                "the patches touch here (parallel normals): a tangential contact".into()
+                "the patches may touch here (normals parallel at its centre, and not proven apart over it): a tangential contact".into()
             } else {
                 "a start-point solve left this region undecided (a singular point of the curve, or a budget)".into()
             },

@@ -92,6 +92,41 @@ fn inside(a: &Box4, b: &Box4) -> bool {
     (0..4).all(|d| b[d][0] <= a[d][0] && a[d][1] <= b[d][1])
 }
 
+/// Where a start point's certified box `c` lies on the step's arc.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Place {
+    /// Not in the tube: not on this arc.
+    Away,
+    /// On the arc behind the current point (`xbox`) along axis `p`.
+    Behind,
+    /// On the arc ahead of the current point.
+    Ahead,
+    /// Partly in the tube, or level with the current point along `p`.
+    Unclear,
+}
+
+/// Where the start point in box `c` lies relative to a proven tube (one arc,
+/// a graph over axis `p`) and the current point's box `xbox`, for a step
+/// towards larger `x_p` if `forward`. A box wholly behind the current point
+/// along `p` is behind whether or not it lies in the tube (if its point is in
+/// the tube, the arc passed it before the current point).
+fn place(c: &Box4, tube: &Box4, xbox: &Box4, p: usize, forward: bool) -> Place {
+    let behind = if forward {
+        c[p][1] < xbox[p][0]
+    } else {
+        c[p][0] > xbox[p][1]
+    };
+    if behind {
+        Place::Behind
+    } else if !overlap(c, tube) {
+        Place::Away
+    } else if !inside(c, tube) || (c[p][0] <= xbox[p][1] && xbox[p][0] <= c[p][1]) {
+        Place::Unclear
+    } else {
+        Place::Ahead
+    }
+}
+
 fn dot(a: &[f64; 4], b: &[f64; 4]) -> f64 {
     (0..4).map(|i| a[i] * b[i]).sum()
 }
@@ -275,17 +310,19 @@ impl Tracer<'_> {
             return Outcome::Unproven;
         };
         let first = tr.tubes.is_empty();
-        // Crossings in the tube.
+        // Start points in the tube: on the arc, which is a graph over axis p,
+        // so each lies behind the current point, ahead of it, or level with
+        // it along p; only those ahead are on this step's walk.
+        let forward = xn[p] > x[p];
         let mut hits = Vec::new();
         for (k, c) in self.crossings.iter().enumerate() {
             if first && matches!(start, Start::Crossing(s) if s == k) {
                 continue;
             }
-            if overlap(c, &tube) {
-                if !inside(c, &tube) {
-                    return Outcome::Retry(0.5);
-                }
-                hits.push(k);
+            match place(c, &tube, xbox, p, forward) {
+                Place::Away | Place::Behind => {}
+                Place::Unclear => return Outcome::Retry(0.5),
+                Place::Ahead => hits.push(k),
             }
         }
         if self.undecided.iter().any(|u| overlap(u, &tube)) {
@@ -299,17 +336,25 @@ impl Tracer<'_> {
             // none was found whole in it: a smaller step.
             return Outcome::Retry(0.5);
         }
+        if let (Some(&k), Start::Crossing(_)) = (hits.first(), start) {
+            if first && !self.inside_between(&xm, p, &tube, &jac, &self.crossings[k], xbox) {
+                // From one crossing straight to another: the open arc between
+                // them meets no boundary, so it lies wholly inside the domain
+                // or wholly outside it (a bit of the curve poking out of an
+                // edge); only a certified point of it inside tells.
+                return Outcome::Retry(0.5);
+            }
+        }
         let mut found = Vec::new();
         for (k, t) in self.turning.iter().enumerate() {
             let own = matches!(start, Start::Turning(s) if s == k);
-            if own && tr.tubes.len() < 2 {
+            if own && first {
                 continue;
             }
-            if overlap(t, &tube) {
-                if !inside(t, &tube) {
-                    return Outcome::Retry(0.5);
-                }
-                found.push(k);
+            match place(t, &tube, xbox, p, forward) {
+                Place::Away | Place::Behind => {}
+                Place::Unclear => return Outcome::Retry(0.5),
+                Place::Ahead => found.push(k),
             }
         }
         let closed = found.iter().any(|&k| matches!(start, Start::Turning(s) if s == k));
@@ -336,6 +381,33 @@ impl Tracer<'_> {
             }
         }
         Outcome::Step(xn, nb, tube, chord_factor(dev, self.tol).clamp(0.5, 2.0))
+    }
+
+    /// The arc of the tube between the start crossing `xbox` and the
+    /// crossing `end` has a point inside the closed domain: the curve point
+    /// on the hyperplane `x_p = xm_p`, certified in the tube, lies in
+    /// `[0, 1]⁴`, and that hyperplane passes strictly between the two
+    /// crossings' boxes (so the point is neither of them).
+    fn inside_between(
+        &self,
+        xm: &[f64; 4],
+        p: usize,
+        tube: &Box4,
+        jac: &[[Iv; 3]; 3],
+        end: &Box4,
+        xbox: &Box4,
+    ) -> bool {
+        let (lo, hi) = if xbox[p][1] < end[p][0] {
+            (xbox[p][1], end[p][0])
+        } else {
+            (end[p][1], xbox[p][0])
+        };
+        if !(lo < xm[p] && xm[p] < hi) {
+            return false;
+        }
+        self.sys
+            .certify_in(xm, p, tube, jac)
+            .is_some_and(|b| inside(&b, tube) && b.iter().all(|&[l, h]| 0.0 <= l && h <= 1.0))
     }
 
     /// The tube around the step `x → xn` (midpoint `xm`) along axis `p`,
