@@ -57,7 +57,7 @@ mod referee;
 mod regions;
 #[cfg(feature = "internals")]
 pub(crate) mod sample;
-mod settle;
+pub(crate) mod settle;
 mod spec;
 mod surface;
 

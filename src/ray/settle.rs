@@ -103,7 +103,7 @@ enum Bound {
 
 /// The homogeneous control point `(w x, w y, w z, w)` exactly (`w = 1`
 /// without a weight); `None` if a value is not finite.
-pub(super) fn exact_hom(p: DVec3, weight: Option<f64>) -> Option<[Q; 4]> {
+pub(crate) fn exact_hom(p: DVec3, weight: Option<f64>) -> Option<[Q; 4]> {
     let q = |x: f64| Q::from_float(x);
     let w = match weight {
         Some(w) => q(w)?,

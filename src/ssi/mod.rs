@@ -63,6 +63,7 @@
 //! system and the answer is incomplete there.
 
 mod algebra;
+mod exact;
 mod start;
 mod system;
 mod trace;
@@ -213,9 +214,17 @@ pub fn intersect_surfaces(a: &Patch, b: &Patch, opts: &SsiOptions) -> Result<Int
         singular: Vec::new(),
         stats: SsiStats::default(),
     };
-    for (x, mx) in &pa {
-        for (y, my) in &pb {
-            let part = intersect_pair(x, y, opts);
+    for (x, mx, ex) in &pa {
+        for (y, my, ey) in &pb {
+            let exact = match (ex, ey) {
+                (Some(a), Some(b)) => Some(exact::ExactPair {
+                    a,
+                    b,
+                    residual: exact::residual(a, b),
+                }),
+                _ => None,
+            };
+            let part = intersect_pair(x, y, exact.as_ref(), opts);
             out.complete &= part.complete;
             for mut br in part.branches {
                 for p in &mut br.points {
@@ -310,16 +319,47 @@ impl PieceMap {
 }
 
 /// The Bézier pieces of a patch with the map from a piece's `[0, 1]²` to
-/// the patch's parameters.
-fn pieces(p: &Patch) -> Result<Vec<(TensorPatch, PieceMap)>> {
+/// the patch's parameters, and the piece's exact homogeneous net (`None` if
+/// a number is not finite).
+fn pieces(p: &Patch) -> Result<Vec<(TensorPatch, PieceMap, Option<exact::ExactNet>)>> {
+    use crate::ray::settle::exact_hom;
+    let hom_of = |points: &[DVec3], weights: Option<&[f64]>| -> Option<Vec<[num_rational::BigRational; 4]>> {
+        points
+            .iter()
+            .enumerate()
+            .map(|(k, &q)| exact_hom(q, weights.map(|w| w[k])))
+            .collect()
+    };
     match p {
-        Patch::Tensor(t) => Ok(vec![(t.clone(), PieceMap::Identity)]),
+        Patch::Tensor(t) => {
+            let net = hom_of(t.points(), t.weights()).map(|hom| exact::ExactNet {
+                deg: t.degree(),
+                hom,
+                rational: t.weights().is_some(),
+            });
+            Ok(vec![(t.clone(), PieceMap::Identity, net)])
+        }
         Patch::Bspline(s) => Ok(s
             .pieces()
             .iter()
-            .map(|piece| (piece.patch().clone(), PieceMap::Span(piece.u_range(), piece.v_range())))
+            .map(|piece| {
+                let net = crate::ray::bspline::exact::exact_piece_net(s, piece).map(|hom| exact::ExactNet {
+                    deg: piece.patch().degree(),
+                    hom,
+                    rational: s.weights().is_some(),
+                });
+                (
+                    piece.patch().clone(),
+                    PieceMap::Span(piece.u_range(), piece.v_range()),
+                    net,
+                )
+            })
             .collect()),
-        Patch::Triangle(t) => Ok(vec![(triangle_as_tensor(t)?, PieceMap::Triangle)]),
+        Patch::Triangle(t) => {
+            let net =
+                hom_of(t.points(), t.weights()).map(|hom| exact::triangle_net(t.degree(), &hom, t.weights().is_some()));
+            Ok(vec![(triangle_as_tensor(t)?, PieceMap::Triangle, net)])
+        }
     }
 }
 
@@ -400,13 +440,26 @@ fn split(b: &Box4) -> ([[f64; 2]; 2], [[f64; 2]; 2]) {
 }
 
 /// The intersection of two Bézier patches.
-fn intersect_pair(a: &TensorPatch, b: &TensorPatch, opts: &SsiOptions) -> Intersection {
+fn intersect_pair(
+    a: &TensorPatch,
+    b: &TensorPatch,
+    exact: Option<&exact::ExactPair>,
+    opts: &SsiOptions,
+) -> Intersection {
     let ha = algebra::homogeneous(a);
     let hb = algebra::homogeneous(b);
     let f = algebra::residual(&ha, &hb);
     let sys = System::new(&f);
     let nd = NdOptions::default().with_max_boxes(opts.max_boxes);
-    let starts = start::find(&sys, &ha, &hb, &nd);
+    // The exact residual matches the enclosures' storage when the degrees
+    // agree (they always do: both are (m, n, p, q)).
+    let exact = exact.filter(|e| {
+        e.residual
+            .iter()
+            .enumerate()
+            .all(|(k, c)| c.len() == sys.coeffs(k).len())
+    });
+    let starts = start::find(&sys, exact, &ha, &hb, &nd);
     let mut out = Intersection {
         complete: true,
         branches: Vec::new(),

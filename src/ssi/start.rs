@@ -20,12 +20,17 @@
 //! leave no undecided region `C` has no singular point at all.
 
 use super::algebra::{turning, Poly};
+use super::exact::{ExactPair, TurningExact};
 use super::system::{Box4, System};
 use crate::error::Error;
 use crate::scalar::iv::Iv;
 use crate::solve::nd::clip::elevate;
+use crate::solve::nd::global::{ExactCoeffs, ExactEq, ExactValues};
 use crate::solve::nd::tensor::len_of;
-use crate::solve::nd::{solve_nd, BernsteinNd, NdOptions};
+use crate::solve::nd::{solve_nd_exact, BernsteinNd, NdOptions};
+use num_rational::BigRational;
+
+type Q = BigRational;
 
 /// What the start-point solves found.
 #[derive(Default)]
@@ -46,12 +51,12 @@ pub(crate) struct Starts {
 
 /// The face `x_d = end` of a 4-D tensor: the coefficients with `i_d = 0`
 /// (or `n_d`), a 3-D tensor in the other axes.
-fn face(c: &[Iv], deg: &[usize; 4], d: usize, end: usize) -> ([usize; 3], Vec<Iv>) {
+fn face<T: Clone>(c: &[T], deg: &[usize; 4], d: usize, end: usize) -> ([usize; 3], Vec<T>) {
     let rest = super::system::others(d);
     let deg3 = rest.map(|a| deg[a]);
     let idx = if end == 0 { 0 } else { deg[d] };
     let mut out = Vec::with_capacity(len_of(&deg3));
-    for (k, &x) in c.iter().enumerate() {
+    for (k, x) in c.iter().enumerate() {
         let mut r = k;
         let mut i = [0usize; 4];
         for a in (0..4).rev() {
@@ -59,7 +64,7 @@ fn face(c: &[Iv], deg: &[usize; 4], d: usize, end: usize) -> ([usize; 3], Vec<Iv
             r /= deg[a] + 1;
         }
         if i[d] == idx {
-            out.push(x);
+            out.push(x.clone());
         }
     }
     (deg3, out)
@@ -78,8 +83,9 @@ fn overlap(a: &Box4, b: &Box4) -> bool {
     (0..4).all(|d| a[d][0] <= b[d][1] && b[d][0] <= a[d][1])
 }
 
-/// The crossings of `C` with the 8 faces.
-fn crossings(sys: &System, opts: &NdOptions, out: &mut Starts) {
+/// The crossings of `C` with the 8 faces (each face system with its exact
+/// coefficients when the residual's are known).
+fn crossings(sys: &System, exact: Option<&[Vec<Q>; 3]>, opts: &NdOptions, out: &mut Starts) {
     let deg = sys.degree();
     for d in 0..4 {
         for end in [0, 1] {
@@ -87,12 +93,36 @@ fn crossings(sys: &System, opts: &NdOptions, out: &mut Starts) {
                 let (deg3, c) = face(sys.coeffs(e), &deg, d, end);
                 BernsteinNd { deg: deg3, c }
             });
-            let res = solve_nd(&eqs, opts);
+            let exact_q: Option<Vec<Vec<Q>>> = exact.map(|ex| ex.iter().map(|c| face(c, &deg, d, end).1).collect());
+            let exact_face: Option<Vec<ExactEq>> =
+                exact_q.as_ref().map(|ex| ex.iter().map(|c| ExactEq::new(c)).collect());
+            let exact_sys = exact_face.as_ref().map(|e| ExactCoeffs {
+                deg: [eqs[0].deg; 3],
+                eqs: e,
+            });
+            let res = solve_nd_exact(&eqs, exact_sys.as_ref().map(|e| e as &dyn ExactValues<3>), opts);
+            let face_sys = match (&exact_q, &exact_face) {
+                (Some(q), Some(e)) => Some(FaceSystem {
+                    deg3: eqs[0].deg,
+                    iv: eqs.iter().map(|p| p.c.clone()).collect(),
+                    exact: q,
+                    eqs: e,
+                }),
+                _ => None,
+            };
             match res {
                 Ok(sol) => {
                     out.boxes += sol.stats.boxes;
                     for r in &sol.roots {
-                        let b = lift(&r.bx, d, end);
+                        let bx3 = match settle_on_boundary(r.bx, face_sys.as_ref()) {
+                            OnBoundary::Inside(b) => b,
+                            OnBoundary::Outside => continue,
+                            OnBoundary::Unknown => {
+                                out.undecided.push(lift(&r.bx, d, end));
+                                continue;
+                            }
+                        };
+                        let b = lift(&bx3, d, end);
                         match out.crossings.iter_mut().find(|c| overlap(c, &b)) {
                             Some(c) => {
                                 for a in 0..4 {
@@ -114,8 +144,150 @@ fn crossings(sys: &System, opts: &NdOptions, out: &mut Starts) {
     }
 }
 
+/// Where a face system's certified zero lies relative to the face's own
+/// boundary (the other faces of `[0, 1]⁴`).
+enum OnBoundary {
+    /// In the closed face, within this box (`bx3`, or the point proven on
+    /// a boundary face).
+    Inside([[f64; 2]; 3]),
+    /// Outside it: not a point of the curve in the domain.
+    Outside,
+    /// Not decided: the box reaches past the boundary and no proof placed
+    /// the zero.
+    Unknown,
+}
+
+/// The face system `x_d = end` with its exact coefficients, for settling
+/// its zeros on the boundary.
+struct FaceSystem<'a> {
+    deg3: [usize; 3],
+    /// The enclosures, per equation.
+    iv: Vec<Vec<Iv>>,
+    /// The exact coefficients, per equation (as rationals and for exact
+    /// evaluation).
+    exact: &'a [Vec<Q>],
+    eqs: &'a [ExactEq],
+}
+
+/// Settles the zero certified in `bx3` (exactly one zero of the face system
+/// in `ℝ³`, a simple one) on the closed face. A box within `[0, 1]³` is
+/// inside. One that reaches past the boundary is contracted by Krawczyk
+/// steps with exact values (a zero `10⁻¹⁸` from the boundary is placed on
+/// its side: floats are fine near 0 and 1). One still reaching past it
+/// along exactly one axis `k` — a zero on the boundary within the last
+/// float — is settled where the boundary is shared: on the 2-face
+/// `x_k = e` the three equations restricted are tested, exactly, for
+/// vanishing identically (two patches sharing an edge: one coordinate
+/// difference is zero all along it); if exactly one does, Krawczyk with
+/// exact values on the other two (2 unknowns) over the box's projection
+/// proves a zero of the 2-face system in it, which is then a zero of the
+/// face system in `bx3` — the only one — on the boundary, so in the closed
+/// domain. Anything else is [`OnBoundary::Unknown`].
+fn settle_on_boundary(bx3: [[f64; 2]; 3], face: Option<&FaceSystem>) -> OnBoundary {
+    use crate::solve::krawczyk::Verdict;
+    use crate::solve::nd::global::GlobalSystem;
+    let out = |b: &[[f64; 2]; 3]| b.iter().any(|&[lo, hi]| hi < 0.0 || lo > 1.0);
+    let past = |b: &[[f64; 2]; 3]| -> Vec<usize> { (0..3).filter(|&k| b[k][0] < 0.0 || b[k][1] > 1.0).collect() };
+    if out(&bx3) {
+        return OnBoundary::Outside;
+    }
+    if past(&bx3).is_empty() {
+        return OnBoundary::Inside(bx3);
+    }
+    let Some(face) = face else {
+        return OnBoundary::Unknown;
+    };
+    let coeffs3 = ExactCoeffs {
+        deg: [face.deg3; 3],
+        eqs: face.eqs,
+    };
+    let sys3 = GlobalSystem::<3>::new([face.deg3; 3], &face.iv, Some(&coeffs3));
+    let mut bx3 = bx3;
+    for _ in 0..3 {
+        match sys3.certify(bx3) {
+            Verdict::Unique(k) => bx3 = k,
+            _ => break,
+        }
+        if out(&bx3) {
+            return OnBoundary::Outside;
+        }
+        if past(&bx3).is_empty() {
+            return OnBoundary::Inside(bx3);
+        }
+    }
+    let k = match past(&bx3).as_slice() {
+        [k] => *k,
+        _ => return OnBoundary::Unknown,
+    };
+    let e = usize::from(bx3[k][0] >= 0.0);
+    let two: Vec<(Vec<usize>, Vec<Q>)> = face.exact.iter().map(|c| face_nd(c, &face.deg3, k, e)).collect();
+    let zero: Vec<bool> = two
+        .iter()
+        .map(|(_, c)| c.iter().all(num_traits::Zero::is_zero))
+        .collect();
+    if zero.iter().filter(|&&z| z).count() != 1 {
+        return OnBoundary::Unknown;
+    }
+    let keep: Vec<&(Vec<usize>, Vec<Q>)> = two.iter().zip(&zero).filter(|(_, &z)| !z).map(|(t, _)| t).collect();
+    let deg2: [usize; 2] = [keep[0].0[0], keep[0].0[1]];
+    let iv: Vec<Vec<Iv>> = keep
+        .iter()
+        .map(|(_, c)| {
+            c.iter()
+                .map(|q| {
+                    let x = crate::scalar::rational_to_interval(q);
+                    Iv::new(x.inf(), x.sup())
+                })
+                .collect()
+        })
+        .collect();
+    let exact2: Vec<ExactEq> = keep.iter().map(|(_, c)| ExactEq::new(c)).collect();
+    let coeffs2 = ExactCoeffs {
+        deg: [deg2, deg2],
+        eqs: &exact2,
+    };
+    let sys = GlobalSystem::<2>::new([deg2, deg2], &iv, Some(&coeffs2));
+    let axes: Vec<usize> = (0..3).filter(|&a| a != k).collect();
+    let proj: [[f64; 2]; 2] = [bx3[axes[0]], bx3[axes[1]]];
+    let infl: [[f64; 2]; 2] = proj.map(|[lo, hi]| {
+        let r = (hi - lo) + 1e-15 * (1.0 + lo.abs().max(hi.abs()));
+        [lo - r, hi + r]
+    });
+    match sys.certify(infl) {
+        Verdict::Unique(k2) if (0..2).all(|a| proj[a][0] <= k2[a][0] && k2[a][1] <= proj[a][1]) => {
+            let mut out = bx3;
+            out[k] = [e as f64; 2];
+            out[axes[0]] = k2[0];
+            out[axes[1]] = k2[1];
+            OnBoundary::Inside(out)
+        }
+        _ => OnBoundary::Unknown,
+    }
+}
+
+/// The face `x_d = end` of a tensor of any dimension (degrees `deg`): the
+/// coefficients with `i_d = 0` (or `deg[d]`), with the remaining degrees.
+fn face_nd<T: Clone>(c: &[T], deg: &[usize], d: usize, end: usize) -> (Vec<usize>, Vec<T>) {
+    let idx = if end == 0 { 0 } else { deg[d] };
+    let rest: Vec<usize> = (0..deg.len()).filter(|&a| a != d).map(|a| deg[a]).collect();
+    let mut out = Vec::with_capacity(len_of(&rest));
+    for (k, x) in c.iter().enumerate() {
+        let (mut r, mut i_d) = (k, 0);
+        for a in (0..deg.len()).rev() {
+            if a == d {
+                i_d = r % (deg[a] + 1);
+            }
+            r /= deg[a] + 1;
+        }
+        if i_d == idx {
+            out.push(x.clone());
+        }
+    }
+    (rest, out)
+}
+
 /// `p` in `(s, t, u, v)` rewritten in `(u, v, s, t)`.
-fn swap_pairs(p: &Poly) -> Poly {
+pub(super) fn swap_pairs(p: &Poly) -> Poly {
     let deg = vec![p.deg[2], p.deg[3], p.deg[0], p.deg[1]];
     let mut c = vec![Iv::point(0.0); p.c.len()];
     let (a0, a1, a2, a3) = (p.deg[0] + 1, p.deg[1] + 1, p.deg[2] + 1, p.deg[3] + 1);
@@ -133,7 +305,15 @@ fn swap_pairs(p: &Poly) -> Poly {
 
 /// The turning points: the first direction (`u`, `v`, `s`, `t`) whose
 /// system is not degenerate.
-fn turning_points(sys: &System, a: &[Poly; 4], b: &[Poly; 4], opts: &NdOptions, out: &mut Starts) {
+fn turning_points(
+    sys: &System,
+    exact: Option<&ExactPair>,
+    a: &[Poly; 4],
+    b: &[Poly; 4],
+    opts: &NdOptions,
+    out: &mut Starts,
+) {
+    let residual: Option<Vec<ExactEq>> = exact.map(|e| e.residual.iter().map(|c| ExactEq::new(c)).collect());
     let f: [BernsteinNd<4>; 3] = std::array::from_fn(|e| BernsteinNd {
         deg: sys.degree(),
         c: sys.coeffs(e).to_vec(),
@@ -164,10 +344,29 @@ fn turning_points(sys: &System, a: &[Poly; 4], b: &[Poly; 4], opts: &NdOptions, 
             raise(&f[2].deg, &f[2].c),
             raise(&d.deg, &d.c),
         ];
-        match solve_nd(&eqs, opts) {
+        let values = match (exact, &residual) {
+            (Some(e), Some(r)) => Some(TurningExact {
+                residual: r,
+                deg: sys.degree(),
+                a: e.a,
+                b: e.b,
+                on_a,
+                axis,
+            }),
+            _ => None,
+        };
+        match solve_nd_exact(&eqs, values.as_ref().map(|v| v as &dyn ExactValues<4>), opts) {
             Ok(sol) => {
                 out.boxes += sol.stats.boxes;
-                out.turning.extend(sol.roots.iter().map(|r| r.bx));
+                // A zero whose box reaches past the domain may lie outside
+                // it: not a start point the tracer may use.
+                for r in &sol.roots {
+                    if r.bx.iter().all(|&[lo, hi]| 0.0 <= lo && hi <= 1.0) {
+                        out.turning.push(r.bx);
+                    } else {
+                        out.undecided.push(r.bx);
+                    }
+                }
                 out.undecided.extend(sol.undecided.iter().map(|u| u.bx));
                 out.undecided.extend(sol.leftovers.iter().copied());
                 return;
@@ -189,11 +388,11 @@ fn turning_points(sys: &System, a: &[Poly; 4], b: &[Poly; 4], opts: &NdOptions, 
 }
 
 /// Every start point (module docs).
-pub(crate) fn find(sys: &System, a: &[Poly; 4], b: &[Poly; 4], opts: &NdOptions) -> Starts {
+pub(crate) fn find(sys: &System, exact: Option<&ExactPair>, a: &[Poly; 4], b: &[Poly; 4], opts: &NdOptions) -> Starts {
     let mut out = Starts::default();
-    crossings(sys, opts, &mut out);
+    crossings(sys, exact.map(|e| &e.residual), opts, &mut out);
     if out.degenerate.is_none() {
-        turning_points(sys, a, b, opts, &mut out);
+        turning_points(sys, exact, a, b, opts, &mut out);
     }
     out
 }

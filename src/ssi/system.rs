@@ -234,6 +234,36 @@ impl System {
         jac.iter().flatten().all(|x| x.is_finite()).then_some(jac)
     }
 
+    /// The signs of the tangent's components over the box `b`, where proven:
+    /// `T_k = (−1)^k det(F' without column k)` (the kernel of `F'`, the
+    /// curve's tangent up to orientation), each determinant enclosed from
+    /// the interval Jacobian over `b`; `Some(±1)` where the enclosure
+    /// excludes 0.
+    pub(crate) fn tangent_signs(&self, b: &Box4) -> [Option<f64>; 4] {
+        let jac: [[Iv; 4]; 3] = std::array::from_fn(|e| {
+            std::array::from_fn(|k| {
+                let (deg, c) = &self.df[e][k];
+                eval_box(c, deg, b)
+            })
+        });
+        std::array::from_fn(|k| {
+            let q = others(k);
+            let m = |r: usize, c: usize| jac[r][q[c]];
+            let det = m(0, 0)
+                .mul(m(1, 1).mul(m(2, 2)).sub(m(1, 2).mul(m(2, 1))))
+                .sub(m(0, 1).mul(m(1, 0).mul(m(2, 2)).sub(m(1, 2).mul(m(2, 0)))))
+                .add(m(0, 2).mul(m(1, 0).mul(m(2, 1)).sub(m(1, 1).mul(m(2, 0)))));
+            let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+            if det.lo > 0.0 {
+                Some(sign)
+            } else if det.hi < 0.0 {
+                Some(-sign)
+            } else {
+                None
+            }
+        })
+    }
+
     /// `K(P, Y)` of the module docs, with `jac` an enclosure of `∂_y F`
     /// over `P × Y` (or over any box holding it); `None` when the midpoint
     /// Jacobian is singular or a bound is not finite. Outside a tube test
@@ -297,12 +327,26 @@ impl System {
     /// and only `F(x_p, ỹ)` is evaluated. `None` if no box of radius
     /// `1e-12`…`1e-8` (relative) inside the tube proves it.
     pub(crate) fn certify_in(&self, x: &[f64; 4], p: usize, tube: &Box4, jac: &[[Iv; 3]; 3]) -> Option<Box4> {
+        self.certify_in_radii(x, p, tube, jac, &[1e-12, 1e-10, 1e-8])
+    }
+
+    /// [`System::certify_in`] with the radii `radii` (relative to
+    /// `1 + |x|`, tried in order): smaller ones place a point within
+    /// `10⁻¹⁴` of a face on its side.
+    pub(crate) fn certify_in_radii(
+        &self,
+        x: &[f64; 4],
+        p: usize,
+        tube: &Box4,
+        jac: &[[Iv; 3]; 3],
+        radii: &[f64],
+    ) -> Option<Box4> {
         let q = others(p);
         let pr = [x[p], x[p]];
         if !(tube[p][0] <= pr[0] && pr[1] <= tube[p][1]) {
             return None;
         }
-        for r in [1e-12, 1e-10, 1e-8] {
+        for &r in radii {
             let y: [[f64; 2]; 3] = std::array::from_fn(|k| {
                 let c = x[q[k]];
                 let rad = r * (1.0 + c.abs());

@@ -32,7 +32,10 @@
 //!    points inside a tube are on this branch. A start point or an
 //!    undecided region that only partly overlaps a tube, a tube that leaves
 //!    the domain with no crossing in it, or two crossings in one tube halve
-//!    the step. Below a step of `10⁻⁹` the branch stops, unfinished.
+//!    the step. Below a step of `10⁻⁹` (or of a quarter of the distance to
+//!    the nearest other start point, if that is smaller: a tiny arc between
+//!    two crossings `10⁻¹⁰` apart is traced in steps its size) the branch
+//!    stops, unfinished.
 
 use super::system::{others, Box4, System};
 use crate::scalar::iv::Iv;
@@ -90,6 +93,40 @@ fn overlap(a: &Box4, b: &Box4) -> bool {
 
 fn inside(a: &Box4, b: &Box4) -> bool {
     (0..4).all(|d| b[d][0] <= a[d][0] && a[d][1] <= b[d][1])
+}
+
+/// How the curve meets the domain at a crossing.
+enum Entry {
+    /// It enters the domain when the tangent `T` (with the signs of its
+    /// components over the crossing's box, where proven) is oriented by
+    /// this sign (`+1`: along `T`), across every face the crossing lies on.
+    Proven(f64, [Option<f64>; 4]),
+    /// It enters through one face as it leaves through another: the
+    /// crossing is all of the curve in the domain nearby.
+    Touches,
+    /// The signs are not proven on some face.
+    Unproven,
+}
+
+/// The faces `(axis, inward sign)` the box lies on: exactly (`exact`: its
+/// range there is the point 0 or 1), or touching or past them.
+fn faces_of(b: &Box4, exact: bool) -> Vec<(usize, f64)> {
+    (0..4)
+        .filter_map(|d| {
+            let (at0, at1) = if exact {
+                (b[d] == [0.0, 0.0], b[d] == [1.0, 1.0])
+            } else {
+                (b[d][0] <= 0.0, b[d][1] >= 1.0)
+            };
+            if at0 {
+                Some((d, 1.0))
+            } else if at1 {
+                Some((d, -1.0))
+            } else {
+                None
+            }
+        })
+        .collect()
 }
 
 /// Where a start point's certified box `c` lies on the step's arc.
@@ -200,33 +237,48 @@ impl Tracer<'_> {
             return tr;
         };
         let mut dir = if backward { t0.map(|c| -c) } else { t0 };
-        if let Start::Crossing(_) = start {
-            dir = t0;
-            // Inward across the face(s) the crossing lies on.
-            let faces: Vec<(usize, f64)> = (0..4)
-                .filter_map(|d| {
-                    if sbox[d][0] <= 0.0 {
-                        Some((d, 1.0))
-                    } else if sbox[d][1] >= 1.0 {
-                        Some((d, -1.0))
-                    } else {
-                        None
+        // From a crossing: the orientation of the tangent that enters the
+        // domain, proven where the signs of the tangent's components over
+        // the crossing's box are (`entry`), else proposed by the float
+        // tangent.
+        let mut entry = None;
+        if let Start::Crossing(k) = start {
+            match self.entry(&sbox) {
+                Entry::Proven(orient, signs) => {
+                    // Orient the float tangent by its largest component whose
+                    // sign is proven.
+                    let axis = (0..4)
+                        .filter(|&a| signs[a].is_some())
+                        .max_by(|&a, &b| t0[a].abs().total_cmp(&t0[b].abs()));
+                    match axis {
+                        Some(a) if t0[a] != 0.0 => {
+                            let want = orient * signs[a].unwrap_or(0.0);
+                            dir = if t0[a] * want > 0.0 { t0 } else { t0.map(|c| -c) };
+                            entry = Some((orient, signs));
+                        }
+                        _ => return tr,
                     }
-                })
-                .collect();
-            let Some(&(d, s)) = faces.iter().max_by(|a, b| t0[a.0].abs().total_cmp(&t0[b.0].abs())) else {
-                return tr;
-            };
-            if t0[d] * s < 0.0 {
-                dir = t0.map(|c| -c);
-            }
-            if faces.iter().any(|&(e, s)| dir[e] * s <= 0.0) {
-                // The curve only touches the domain here (a corner or edge).
-                tr.end = End::Crossing(match start {
-                    Start::Crossing(k) => k,
-                    Start::Turning(k) => k,
-                });
-                return tr;
+                }
+                Entry::Touches => {
+                    // The curve only touches the domain here (enters through
+                    // one face as it leaves through another: a corner).
+                    tr.end = End::Crossing(k);
+                    return tr;
+                }
+                Entry::Unproven => {
+                    dir = t0;
+                    let faces = faces_of(&sbox, false);
+                    let Some(&(d, s)) = faces.iter().max_by(|a, b| t0[a.0].abs().total_cmp(&t0[b.0].abs())) else {
+                        return tr;
+                    };
+                    if t0[d] * s < 0.0 {
+                        dir = t0.map(|c| -c);
+                    }
+                    if faces.iter().any(|&(e, s)| dir[e] * s <= 0.0) {
+                        tr.end = End::Crossing(k);
+                        return tr;
+                    }
+                }
             }
         }
         let mut x = x0;
@@ -241,14 +293,14 @@ impl Tracer<'_> {
                 tr.end = End::Stuck(xbox);
                 return tr;
             }
-            let outcome = self.step(&x, &xbox, &dir, h, start, &mut tr);
+            let outcome = self.step(&x, &xbox, &dir, h, start, entry, &mut tr);
             match outcome {
                 Outcome::Retry(_) | Outcome::Unproven => {
                     (h, ceiling) = match outcome {
                         Outcome::Retry(f) => (h * f, ceiling),
                         _ => (0.6 * h, 0.9 * h),
                     };
-                    if h < MIN_STEP {
+                    if h < MIN_STEP && h < 0.25 * self.gap(&xbox, start) {
                         tr.end = End::Stuck(xbox);
                         return tr;
                     }
@@ -280,7 +332,17 @@ impl Tracer<'_> {
     }
 
     /// Proposes, checks and proves one step of length `h` (module docs).
-    fn step(&self, x: &[f64; 4], xbox: &Box4, dir: &[f64; 4], h: f64, start: Start, tr: &mut Trace) -> Outcome {
+    #[allow(clippy::too_many_arguments)]
+    fn step(
+        &self,
+        x: &[f64; 4],
+        xbox: &Box4,
+        dir: &[f64; 4],
+        h: f64,
+        start: Start,
+        entry: Option<(f64, [Option<f64>; 4])>,
+        tr: &mut Trace,
+    ) -> Outcome {
         let pred = self.predict(x, dir, h);
         let mid: [f64; 4] = std::array::from_fn(|i| 0.5 * (x[i] + pred[i]));
         let Some(tm) = self.oriented(&mid, dir) else {
@@ -336,13 +398,23 @@ impl Tracer<'_> {
             // none was found whole in it: a smaller step.
             return Outcome::Retry(0.5);
         }
-        if let (Some(&k), Start::Crossing(_)) = (hits.first(), start) {
-            if first && !self.inside_between(&xm, p, &tube, &jac, &self.crossings[k], xbox) {
-                // From one crossing straight to another: the open arc between
-                // them meets no boundary, so it lies wholly inside the domain
-                // or wholly outside it (a bit of the curve poking out of an
-                // edge); only a certified point of it inside tells.
-                return Outcome::Retry(0.5);
+        if let (true, Start::Crossing(_)) = (first, start) {
+            // The first step from a crossing must enter the domain. Going on
+            // to another crossing it is the whole open arc between them,
+            // which meets no boundary, so it lies wholly inside the domain or
+            // wholly outside it (a bit of the curve poking out of an edge):
+            // proven inside by the orientation of the walk (the tangent's
+            // proven signs at the start: `T_p` says which way along `p` the
+            // entering orientation goes), or else by a certified point of
+            // the arc inside.
+            let walk = if xn[p] > x[p] { 1.0 } else { -1.0 };
+            let inward = entry.and_then(|(orient, signs)| signs[p].map(|sp| walk * sp == orient));
+            match (inward, hits.first()) {
+                (Some(false), _) => return Outcome::Retry(0.5),
+                (None, Some(&k)) if !self.inside_between(&xm, p, &tube, &jac, &self.crossings[k], xbox) => {
+                    return Outcome::Retry(0.5)
+                }
+                _ => {}
             }
         }
         let mut found = Vec::new();
@@ -383,6 +455,60 @@ impl Tracer<'_> {
         Outcome::Step(xn, nb, tube, chord_factor(dev, self.tol).clamp(0.5, 2.0))
     }
 
+    /// How the curve meets the domain at the crossing `sbox` ([`Entry`]): a
+    /// certified crossing is a simple zero of its face system, so the
+    /// tangent's component across the face is not 0 there; its sign over
+    /// the box, proven in interval arithmetic, says which orientation
+    /// enters. A box that lies on no face exactly (or past one) is
+    /// unproven.
+    fn entry(&self, sbox: &Box4) -> Entry {
+        let faces = faces_of(sbox, true);
+        if faces.is_empty() || faces_of(sbox, false).len() != faces.len() {
+            return Entry::Unproven;
+        }
+        let signs = self.sys.tangent_signs(sbox);
+        let mut orient = None;
+        for &(d, s) in &faces {
+            let Some(t) = signs[d] else {
+                return Entry::Unproven;
+            };
+            match orient {
+                None => orient = Some(t * s),
+                Some(o) if o != t * s => return Entry::Touches,
+                Some(_) => {}
+            }
+        }
+        match orient {
+            Some(o) => Entry::Proven(o, signs),
+            None => Entry::Unproven,
+        }
+    }
+
+    /// The max-norm distance from the box `xbox` to the nearest start point
+    /// other than `start` (`∞` if none): where start points crowd together
+    /// (a tiny arc cutting a corner, two crossings 10⁻¹⁰ apart) steps go
+    /// below [`MIN_STEP`], down to a quarter of this gap.
+    fn gap(&self, xbox: &Box4, start: Start) -> f64 {
+        let dist = |b: &Box4| {
+            (0..4)
+                .map(|d| (b[d][0] - xbox[d][1]).max(xbox[d][0] - b[d][1]).max(0.0))
+                .fold(0.0f64, f64::max)
+        };
+        let crossings = self
+            .crossings
+            .iter()
+            .enumerate()
+            .filter(|&(k, _)| !matches!(start, Start::Crossing(s) if s == k))
+            .map(|(_, b)| dist(b));
+        let turning = self
+            .turning
+            .iter()
+            .enumerate()
+            .filter(|&(k, _)| !matches!(start, Start::Turning(s) if s == k))
+            .map(|(_, b)| dist(b));
+        crossings.chain(turning).fold(f64::INFINITY, f64::min)
+    }
+
     /// The arc of the tube between the start crossing `xbox` and the
     /// crossing `end` has a point inside the closed domain: the curve point
     /// on the hyperplane `x_p = xm_p`, certified in the tube, lies in
@@ -406,7 +532,7 @@ impl Tracer<'_> {
             return false;
         }
         self.sys
-            .certify_in(xm, p, tube, jac)
+            .certify_in_radii(xm, p, tube, jac, &[1e-15, 1e-13, 1e-12, 1e-10, 1e-8])
             .is_some_and(|b| inside(&b, tube) && b.iter().all(|&[l, h]| 0.0 <= l && h <= 1.0))
     }
 

@@ -19,7 +19,7 @@ type Hom = [Q; 4];
 
 /// The homogeneous Bézier net of `piece`, exactly, row-major (`i` along
 /// `u`, `j` along `v`); `None` if a knot or point is not finite.
-pub(super) fn exact_piece_net(s: &BsplineSurface, piece: &BezierPiece) -> Option<Vec<Hom>> {
+pub(crate) fn exact_piece_net(s: &BsplineSurface, piece: &BezierPiece) -> Option<Vec<Hom>> {
     let (p, q) = s.degree;
     let (nu, nv) = s.counts;
     let ku = span(&s.knots_u, p, nu, piece.u)?;

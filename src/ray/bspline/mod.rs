@@ -58,7 +58,7 @@
 //! piece makes it [`Degeneracy::Unresolved`] with every hit found (all pieces),
 //! `complete` only if every piece finished within its budget.
 
-mod exact;
+pub(crate) mod exact;
 mod merge;
 mod surface;
 

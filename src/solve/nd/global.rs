@@ -7,7 +7,10 @@
 //!   float bound `r` of the largest coefficient radius (the Bernstein basis
 //!   is a non-negative partition of unity, so a coefficient error of at
 //!   most `r` moves the value by at most `r`), then enclosed in floats
-//!   outward.
+//!   outward. Where the caller knows the exact system the enclosures stand
+//!   for ([`ExactValues`]), `F(x̃)` is its exact value, with no radius: then a
+//!   zero is proven in a leaf however close its neighbours or its
+//!   conditioning make it.
 //! * `F'(X)` is the enclosure over `X` of the derivatives computed once on
 //!   the whole domain (interval de Casteljau with parameter ranges), not the
 //!   hull of a restricted polynomial's differences, whose rounding is
@@ -32,6 +35,9 @@ use num_traits::{One, Zero};
 pub(crate) struct GlobalSystem<'a, const N: usize> {
     deg: [[usize; N]; N],
     c: &'a [Vec<Iv>],
+    /// The exact system the enclosures `c` hold, when known: its values are
+    /// then exact, with no radius.
+    exact: Option<&'a dyn ExactValues<N>>,
     parts: std::cell::OnceCell<Parts>,
 }
 
@@ -58,10 +64,11 @@ fn radius_bound(eq: &[Iv]) -> f64 {
 }
 
 impl<'a, const N: usize> GlobalSystem<'a, N> {
-    pub(crate) fn new(deg: [[usize; N]; N], c: &'a [Vec<Iv>]) -> Self {
+    pub(crate) fn new(deg: [[usize; N]; N], c: &'a [Vec<Iv>], exact: Option<&'a dyn ExactValues<N>>) -> Self {
         Self {
             deg,
             c,
+            exact,
             parts: std::cell::OnceCell::new(),
         }
     }
@@ -75,8 +82,13 @@ impl<'a, const N: usize> GlobalSystem<'a, N> {
         })
     }
 
-    /// `f_e(x)` enclosed (module docs: exact, plus the radius).
+    /// `f_e(x)` enclosed (module docs: exact, plus the radius; exact alone
+    /// for an exact system).
     fn value(&self, e: usize, x: &[f64; N]) -> Iv {
+        if let Some(ex) = self.exact {
+            let v = rational_to_interval(&ex.value(e, x));
+            return Iv::new(v.inf(), v.sup());
+        }
         let v = eval_exact(&self.c[e], &self.deg[e], x);
         let r = &self.parts().radius[e];
         let lo = rational_to_interval(&(&v - r)).inf();
@@ -170,8 +182,15 @@ fn dyadic(x: f64) -> (BigInt, u32) {
 /// end).
 pub(crate) fn eval_exact(c: &[Iv], deg: &[usize], x: &[f64]) -> BigRational {
     let parts: Vec<(BigInt, u32)> = c.iter().map(|v| dyadic(v.mid())).collect();
-    let mut shift = parts.iter().map(|p| p.1).max().unwrap_or(0);
-    let mut work: Vec<BigInt> = parts.into_iter().map(|(m, k)| m << (shift - k)).collect();
+    let shift = parts.iter().map(|p| p.1).max().unwrap_or(0);
+    let work: Vec<BigInt> = parts.into_iter().map(|(m, k)| m << (shift - k)).collect();
+    let (num, shift) = casteljau_int(work, shift, deg, x);
+    BigRational::new(num, BigInt::one() << shift)
+}
+
+/// De Casteljau on integer coefficients `work` (over `2^shift`) at the float
+/// point `x`: the value as an integer over `2^shift'`, returned with `shift'`.
+fn casteljau_int(mut work: Vec<BigInt>, mut shift: u32, deg: &[usize], x: &[f64]) -> (BigInt, u32) {
     let mut len = work.len();
     for d in (0..deg.len()).rev() {
         let n = deg[d];
@@ -192,8 +211,50 @@ pub(crate) fn eval_exact(c: &[Iv], deg: &[usize], x: &[f64]) -> BigRational {
         len = lines;
         shift += n as u32 * k;
     }
-    let num = work.swap_remove(0);
-    BigRational::new(num, BigInt::one() << shift)
+    (work.swap_remove(0), shift)
+}
+
+/// Exact values at float points of the system a [`GlobalSystem`]'s
+/// enclosures stand for.
+pub(crate) trait ExactValues<const N: usize> {
+    /// `f_e(x)`, exactly.
+    fn value(&self, e: usize, x: &[f64; N]) -> BigRational;
+}
+
+/// A system by its exact coefficients: equation `e` of degrees `deg[e]`.
+pub(crate) struct ExactCoeffs<'a, const N: usize> {
+    pub(crate) deg: [[usize; N]; N],
+    pub(crate) eqs: &'a [ExactEq],
+}
+
+impl<const N: usize> ExactValues<N> for ExactCoeffs<'_, N> {
+    fn value(&self, e: usize, x: &[f64; N]) -> BigRational {
+        self.eqs[e].eval(&self.deg[e], x)
+    }
+}
+
+/// A polynomial with exact rational coefficients, stored as integers over
+/// one common denominator, for exact values at float points.
+#[derive(Clone, Debug)]
+pub(crate) struct ExactEq {
+    num: Vec<BigInt>,
+    den: BigInt,
+}
+
+impl ExactEq {
+    /// The coefficients `c` (any rationals).
+    pub(crate) fn new(c: &[BigRational]) -> Self {
+        use num_integer::Integer;
+        let den = c.iter().fold(BigInt::one(), |l, q| l.lcm(q.denom()));
+        let num = c.iter().map(|q| q.numer() * (&den / q.denom())).collect();
+        Self { num, den }
+    }
+
+    /// The exact value at the float point `x`.
+    pub(crate) fn eval(&self, deg: &[usize], x: &[f64]) -> BigRational {
+        let (num, shift) = casteljau_int(self.num.clone(), 0, deg, x);
+        BigRational::new(num, &self.den << shift)
+    }
 }
 
 #[cfg(test)]

@@ -79,7 +79,7 @@
 //! box solver (each endpoint rounded to nearest, moved one float outward).
 
 pub(crate) mod clip;
-mod global;
+pub(crate) mod global;
 pub(crate) mod krawczyk;
 mod runner;
 pub(crate) mod tensor;
@@ -166,6 +166,17 @@ pub struct NdSolution<const N: usize> {
 /// ([`Error::InvalidOption`]), coefficients beyond `10³⁰⁰`
 /// ([`Error::NonFinite`]).
 pub fn solve_nd<const N: usize>(system: &[BernsteinNd<N>; N], opts: &NdOptions) -> Result<NdSolution<N>> {
+    solve_nd_exact(system, None, opts)
+}
+
+/// [`solve_nd`] for a system whose exact values are known (`exact`: the
+/// polynomials whose coefficients lie in `system`'s enclosures): the
+/// leaves' Krawczyk tests then evaluate `F` exactly.
+pub(crate) fn solve_nd_exact<const N: usize>(
+    system: &[BernsteinNd<N>; N],
+    exact: Option<&dyn global::ExactValues<N>>,
+    opts: &NdOptions,
+) -> Result<NdSolution<N>> {
     if !(opts.eps > 0.0 && opts.eps < 1.0) {
         return Err(Error::InvalidOption(format!(
             "eps must lie in (0, 1), got {}",
@@ -184,5 +195,5 @@ pub fn solve_nd<const N: usize>(system: &[BernsteinNd<N>; N], opts: &NdOptions) 
     }
     let deg: [[usize; N]; N] = std::array::from_fn(|e| system[e].deg);
     let root: Vec<_> = system.iter().map(|p| p.c.clone()).collect();
-    Ok(runner::Runner::new(deg, &root, *opts).run())
+    Ok(runner::Runner::new(deg, &root, exact, *opts).run())
 }

@@ -3,7 +3,7 @@
 //! overlapping roots merged, undecided boxes grouped.
 
 use super::clip::{elevate, hull_spans, widen};
-use super::global::GlobalSystem;
+use super::global::{ExactValues, GlobalSystem};
 use super::krawczyk::{certify_unit, preconditioner, LocalBox};
 use super::tensor::{len_of, one_signed, subdivide};
 use super::{NdOptions, NdRoot, NdSolution, NdUndecided};
@@ -61,7 +61,12 @@ pub(super) struct Runner<'a, const N: usize> {
 }
 
 impl<'a, const N: usize> Runner<'a, N> {
-    pub(super) fn new(deg: [[usize; N]; N], root: &'a [Vec<Iv>], opts: NdOptions) -> Self {
+    pub(super) fn new(
+        deg: [[usize; N]; N],
+        root: &'a [Vec<Iv>],
+        exact: Option<&'a dyn ExactValues<N>>,
+        opts: NdOptions,
+    ) -> Self {
         let mut offsets = [0usize; N];
         for e in 1..N {
             offsets[e] = offsets[e - 1] + len_of(&deg[e - 1]);
@@ -70,7 +75,7 @@ impl<'a, const N: usize> Runner<'a, N> {
             deg,
             offsets,
             root,
-            global: GlobalSystem::new(deg, root),
+            global: GlobalSystem::new(deg, root, exact),
             opts,
             stats: Stats::default(),
             roots: Vec::new(),
@@ -336,17 +341,58 @@ impl<'a, const N: usize> Runner<'a, N> {
         }
     }
 
+    /// A joined undecided region, settled by global Krawczyk on it whole,
+    /// else on its halves (the widest side bisected) down to `depth` more
+    /// levels: two simple zeros closer than the subdivided coefficients
+    /// resolve (their leaves all undecided, then joined into one region)
+    /// are each proven in a half wider than the rounding of their values.
+    /// Halves neither proven nor excluded at the last level stay undecided.
+    /// First, the whole region inflated by up to 512 times its widest side:
+    /// one zero there proves the region holds at most that zero.
+    fn settle_region(&mut self, bx: [[f64; 2]; N], depth: usize) {
+        match self.certify_global(bx) {
+            Verdict::Unique(k) => self.roots.push(k),
+            Verdict::NoRoot => self.stats.krawczyk_exclusions += 1,
+            Verdict::Undecided(()) => {
+                if depth == REGION_SPLITS {
+                    // A lone simple zero whose values are lost to rounding
+                    // over the region (a zero within 10⁻¹⁴ of a face, its
+                    // system's coefficients rounded): proven in a box some
+                    // powers of two wider than the region.
+                    let w = bx.iter().fold(1e-15f64, |m, [lo, hi]| m.max(hi - lo));
+                    for f in [8.0, 64.0, 512.0] {
+                        let infl: [[f64; 2]; N] = bx.map(|[lo, hi]| [lo - f * w, hi + f * w]);
+                        self.stats.krawczyk_calls += 1;
+                        if let Verdict::Unique(k) = self.global.certify(infl) {
+                            self.roots.push(k);
+                            return;
+                        }
+                    }
+                }
+                let d = (0..N)
+                    .max_by(|&a, &b| (bx[a][1] - bx[a][0]).total_cmp(&(bx[b][1] - bx[b][0])))
+                    .unwrap_or(0);
+                let mid = 0.5 * bx[d][0] + 0.5 * bx[d][1];
+                if depth == 0 || !(bx[d][0] < mid && mid < bx[d][1]) {
+                    self.undecided.push(bx);
+                    return;
+                }
+                let (mut lo, mut hi) = (bx, bx);
+                lo[d][1] = mid;
+                hi[d][0] = mid;
+                self.settle_region(lo, depth - 1);
+                self.settle_region(hi, depth - 1);
+            }
+        }
+    }
+
     fn finish(mut self, left: Vec<[[f64; 2]; N]>) -> NdSolution<N> {
         // Joined undecided leaves are tried once more as a whole: two zeros
         // closer than a leaf's inflation are separated by the join, and a
         // group wider than the rounding of its values can be proven where no
         // single leaf could.
         for bx in group(std::mem::take(&mut self.undecided)) {
-            match self.certify_global(bx) {
-                Verdict::Unique(k) => self.roots.push(k),
-                Verdict::NoRoot => self.stats.krawczyk_exclusions += 1,
-                Verdict::Undecided(()) => self.undecided.push(bx),
-            }
+            self.settle_region(bx, REGION_SPLITS);
         }
         let roots = std::mem::take(&mut self.roots);
         let roots = self.merge(roots);
@@ -410,6 +456,10 @@ impl<'a, const N: usize> Runner<'a, N> {
         out
     }
 }
+
+/// Bisection levels of `settle_region` (at most `2^6` Krawczyk
+/// tests per joined region).
+const REGION_SPLITS: usize = 6;
 
 /// The closed boxes share a point.
 fn overlap<const N: usize>(a: &[[f64; 2]; N], b: &[[f64; 2]; N]) -> bool {
