@@ -368,9 +368,9 @@ mod poke {
         let b = |c: f64| [c * c, c * c - c, (1.0 - c) * (1.0 - c)];
         let (bx, by) = (b(cx), b(cy));
         let mut pts = Vec::new();
-        for i in 0..3 {
-            for j in 0..3 {
-                pts.push(DVec3::new(0.5 * i as f64, 0.5 * j as f64, alpha * bx[i] + beta * by[j]));
+        for (i, x) in bx.iter().enumerate() {
+            for (j, y) in by.iter().enumerate() {
+                pts.push(DVec3::new(0.5 * i as f64, 0.5 * j as f64, alpha * x + beta * y));
             }
         }
         Patch::from(TensorPatch::new(2, 2, pts, None).unwrap())
