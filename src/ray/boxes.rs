@@ -7,7 +7,7 @@ use super::patch::{BezierRef, TensorPatch};
 use super::query::{Query, Ray, RayOptions};
 use super::regions::{finish, region_hit, sort_by_t};
 use crate::error::{Error, Result};
-use crate::scalar::iv::Iv;
+use crate::scalar::iv::{down, up, Iv};
 use crate::solve::rect::{eval_box, solve_rect_iv, RectClip, RectOptions, RectProblem};
 use crate::solve::{Box2, SquareRoute};
 
@@ -33,12 +33,90 @@ fn solver_query(opts: &RayOptions, d2: Iv, scale: f64) -> (Option<[f64; 2]>, Que
     (key_min, query)
 }
 
-/// `n · q_k` for four points at once: per lane the operations of the
-/// scalar `dot` (`Iv::mul`, `Iv::add`), so the same floats, written so that
-/// the compiler can run the four lanes side by side.
+/// Four intervals side by side, lane `k` holding the `k`-th: the same
+/// [`Iv`] operations per lane (so the same floats), written over arrays so
+/// that they compile to vector instructions whatever the inliner decides
+/// elsewhere.
+#[derive(Clone, Copy)]
+struct Lanes {
+    lo: [f64; 4],
+    hi: [f64; 4],
+}
+
+impl Lanes {
+    #[inline(always)]
+    fn splat(x: Iv) -> Self {
+        Self {
+            lo: [x.lo; 4],
+            hi: [x.hi; 4],
+        }
+    }
+
+    #[inline(always)]
+    fn of(x: [Iv; 4]) -> Self {
+        Self {
+            lo: [x[0].lo, x[1].lo, x[2].lo, x[3].lo],
+            hi: [x[0].hi, x[1].hi, x[2].hi, x[3].hi],
+        }
+    }
+
+    #[inline(always)]
+    fn ivs(self) -> [Iv; 4] {
+        let at = |k: usize| Iv::new(self.lo[k], self.hi[k]);
+        [at(0), at(1), at(2), at(3)]
+    }
+
+    /// [`Iv::add`] per lane.
+    #[inline(always)]
+    fn add(self, b: Self) -> Self {
+        let mut out = self;
+        for k in 0..4 {
+            out.lo[k] = down(self.lo[k] + b.lo[k]);
+            out.hi[k] = up(self.hi[k] + b.hi[k]);
+        }
+        out
+    }
+
+    /// [`Iv::sub`] per lane.
+    #[inline(always)]
+    fn sub(self, b: Self) -> Self {
+        let mut out = self;
+        for k in 0..4 {
+            out.lo[k] = down(self.lo[k] - b.hi[k]);
+            out.hi[k] = up(self.hi[k] - b.lo[k]);
+        }
+        out
+    }
+
+    /// [`Iv::mul`] per lane, the extreme products picked by `<` (no NaN
+    /// reaches here: the net and the ray are finite; a `±0` picked either way
+    /// rounds outward to the same bound), which vectorizes where `f64::min`
+    /// may not.
+    #[inline(always)]
+    fn mul(self, b: Self) -> Self {
+        let lt = |x: f64, y: f64| if x < y { x } else { y };
+        let gt = |x: f64, y: f64| if x > y { x } else { y };
+        let mut out = self;
+        for k in 0..4 {
+            let p = [
+                self.lo[k] * b.lo[k],
+                self.lo[k] * b.hi[k],
+                self.hi[k] * b.lo[k],
+                self.hi[k] * b.hi[k],
+            ];
+            out.lo[k] = down(lt(lt(lt(p[0], p[1]), p[2]), p[3]));
+            out.hi[k] = up(gt(gt(gt(p[0], p[1]), p[2]), p[3]));
+        }
+        out
+    }
+}
+
+/// `n · q` for four points at once (`q[c]` the lanes of coordinate `c`):
+/// per lane the operations of the scalar `dot`, so the same floats.
 #[inline(always)]
-fn dot4(n: &[Iv; 3], q: &[[Iv; 3]; 4]) -> [Iv; 4] {
-    std::array::from_fn(|k| n[0].mul(q[k][0]).add(n[1].mul(q[k][1])).add(n[2].mul(q[k][2])))
+fn dot4(n: &[Iv; 3], q: &[Lanes; 3]) -> [Iv; 4] {
+    let (a, b, c) = (Lanes::splat(n[0]), Lanes::splat(n[1]), Lanes::splat(n[2]));
+    a.mul(q[0]).add(b.mul(q[1])).add(c.mul(q[2])).ivs()
 }
 
 /// The tensor route through [`solve_rect`], in [`Iv`] arithmetic throughout:
@@ -73,31 +151,46 @@ pub(super) fn intersect_rect(p: &TensorPatch, ray: &Ray, opts: &RayOptions) -> R
     let o = ray.origin().to_array();
     let len = (m + 1) * (n + 1);
     let (mut f, mut g, mut h) = (
-        Vec::with_capacity(len),
-        Vec::with_capacity(len),
-        Vec::with_capacity(len),
+        vec![Iv::point(0.0); len],
+        vec![Iv::point(0.0); len],
+        vec![Iv::point(0.0); len],
     );
     let weights = p.weights();
     // (wP − w o), from the homogeneous enclosures (w = 1 exactly for a
-    // polynomial patch).
-    let q_of = |hom: &[Iv; 4]| -> [Iv; 3] {
-        match weights {
-            None => std::array::from_fn(|c| hom[c].sub(Iv::point(o[c]))),
-            Some(_) => std::array::from_fn(|c| hom[c].sub(hom[3].mul(Iv::point(o[c])))),
-        }
-    };
-    let mut quads = p.ivnet().chunks_exact(4);
-    for quad in &mut quads {
-        let q: [[Iv; 3]; 4] = std::array::from_fn(|k| q_of(&quad[k]));
-        for (out, n) in [(&mut f, &n1), (&mut g, &n2), (&mut h, &dt)] {
-            out.extend_from_slice(&dot4(n, &q));
-        }
+    // polynomial patch), four control points at a time.
+    let net = p.ivnet();
+    let quads = len / 4;
+    let origin = [0, 1, 2].map(|c| Lanes::splat(Iv::point(o[c])));
+    for i in 0..quads {
+        let quad = &net[4 * i..4 * i + 4];
+        let lanes = |c: usize| Lanes::of([quad[0][c], quad[1][c], quad[2][c], quad[3][c]]);
+        let q: [Lanes; 3] = if weights.is_none() {
+            [
+                lanes(0).sub(origin[0]),
+                lanes(1).sub(origin[1]),
+                lanes(2).sub(origin[2]),
+            ]
+        } else {
+            let w = lanes(3);
+            [
+                lanes(0).sub(w.mul(origin[0])),
+                lanes(1).sub(w.mul(origin[1])),
+                lanes(2).sub(w.mul(origin[2])),
+            ]
+        };
+        f[4 * i..4 * i + 4].copy_from_slice(&dot4(&n1, &q));
+        g[4 * i..4 * i + 4].copy_from_slice(&dot4(&n2, &q));
+        h[4 * i..4 * i + 4].copy_from_slice(&dot4(&dt, &q));
     }
-    for hom in quads.remainder() {
-        let q = q_of(hom);
-        f.push(dot(&n1, &q));
-        g.push(dot(&n2, &q));
-        h.push(dot(&dt, &q));
+    for k in 4 * quads..len {
+        let hom = &net[k];
+        let q: [Iv; 3] = [0, 1, 2].map(|c| match weights {
+            None => hom[c].sub(Iv::point(o[c])),
+            Some(_) => hom[c].sub(hom[3].mul(Iv::point(o[c]))),
+        });
+        f[k] = dot(&n1, &q);
+        g[k] = dot(&n2, &q);
+        h[k] = dot(&dt, &q);
     }
     let one_signed = |c: &[Iv]| c.iter().all(|x| x.lo > 0.0) || c.iter().all(|x| x.hi < 0.0);
     // (Every h_ij < 0: t < 0 on the whole patch.)
