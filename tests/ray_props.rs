@@ -870,7 +870,7 @@ fn judge_adversary(family: adversary::Family, seed: u64) -> Result<(), TestCaseE
     let case = adversary::generate(family, seed);
     let verdict = adversary::judge(&case);
     prop_assert!(
-        verdict.faults.is_empty(),
+        !verdict.fails(),
         "{}\npatch: {}",
         adversary::report(&case, &verdict, "PATCH.json"),
         case.patch_json()
