@@ -1201,6 +1201,8 @@ struct Grid {
     targets: Vec<Target>,
     /// On the heights, for the label.
     note: String,
+    /// `Some(c)`: `∂z/∂u = 0` along the edge `u = c`.
+    flat_edge: Option<f64>,
 }
 
 /// `k/64` for a random `1 ≤ k ≤ 63`.
@@ -1228,7 +1230,7 @@ fn heights(rng: &mut Mix, count: usize) -> (Vec<f64>, String) {
 /// `[hx, x0, hy, y0]`: grid steps and offsets, dyadic.
 fn steps(rng: &mut Mix) -> [f64; 4] {
     let step = [0.25, 0.5, 0.75, 1.0, 1.5];
-    let offset = [0.0, -0.5, 0.25, -3.0, 1024.5];
+    let offset = [0.0, -0.5, 0.25, -3.0, 1024.5, 1048576.5, -196608.25];
     [rng.pick(&step), rng.pick(&offset), rng.pick(&step), rng.pick(&offset)]
 }
 
@@ -1253,13 +1255,28 @@ fn box_targets(rng: &mut Mix, [u0, u1, v0, v1]: [f64; 4]) -> Vec<Target> {
 fn tensor_grid(rng: &mut Mix, rational: bool) -> Grid {
     let (m, n) = (rng.range(1, 4) as usize, rng.range(1, 4) as usize);
     let [hx, x0, hy, y0] = steps(rng);
-    let (z, note) = heights(rng, (m + 1) * (n + 1));
+    let (mut z, mut note) = heights(rng, (m + 1) * (n + 1));
+    let flat_edge = (m >= 2 && rng.chance(0.2)).then(|| {
+        // Rows m and m − 1 equal: ∂z/∂u = 0 along u = 1.
+        z.copy_within((m - 1) * (n + 1)..m * (n + 1), m * (n + 1));
+        note += " flat edge";
+        1.0
+    });
     let points = (0..=m)
         .flat_map(|i| (0..=n).map(move |j| (i, j)))
         .map(|(i, j)| [x0 + hx * i as f64, y0 + hy * j as f64, z[i * (n + 1) + j]])
         .collect();
     let weights = rational.then(|| {
-        let alpha: Vec<f64> = (0..=m).map(|_| 0.25 + 1.75 * rng.unit()).collect();
+        let extreme = rng.chance(0.25);
+        let alpha: Vec<f64> = (0..=m)
+            .map(|_| {
+                if extreme {
+                    pow2(rng.range(-6, 6)) * (1.0 + rng.unit())
+                } else {
+                    0.25 + 1.75 * rng.unit()
+                }
+            })
+            .collect();
         (0..=m).flat_map(|i| vec![alpha[i]; n + 1]).collect()
     });
     let mut targets = box_targets(rng, [0.0, 1.0, 0.0, 1.0]);
@@ -1281,13 +1298,25 @@ fn tensor_grid(rng: &mut Mix, rational: bool) -> Grid {
         dom: [0.0, 1.0, 0.0, 1.0],
         targets,
         note,
+        flat_edge,
     }
 }
 
 fn triangle_grid(rng: &mut Mix) -> Grid {
     let n = rng.range(1, 4) as usize;
     let [hx, x0, hy, y0] = steps(rng);
-    let (z, note) = heights(rng, (n + 1) * (n + 2) / 2);
+    let (mut z, mut note) = heights(rng, (n + 1) * (n + 2) / 2);
+    let flat_edge = (n >= 2 && rng.chance(0.2)).then(|| {
+        // z(1, j) = z(0, j): ∂z/∂u = 0 along u = 0 (points (i, j) stored
+        // j outer, i inner).
+        let mut start = 0;
+        for j in 0..n {
+            z[start + 1] = z[start];
+            start += n - j + 1;
+        }
+        note += " flat edge";
+        0.0
+    });
     let points = (0..=n)
         .flat_map(|j| (0..=n - j).map(move |i| (i, j)))
         .zip(&z)
@@ -1313,6 +1342,7 @@ fn triangle_grid(rng: &mut Mix) -> Grid {
         dom: [0.0, 1.0, 0.0, 1.0],
         targets,
         note,
+        flat_edge,
     }
 }
 
@@ -1349,7 +1379,13 @@ fn bspline_grid(rng: &mut Mix) -> Grid {
     let [hx, x0, hy, y0] = steps(rng);
     // x = p·hx·u + x0: the points sit at p·hx·(Greville) = hx·(sum of p knots).
     let sum = |k: &[f64], i: usize, p: usize| k[i + 1..=i + p].iter().sum::<f64>();
-    let (z, note) = heights(rng, nu * nv);
+    let (mut z, mut note) = heights(rng, nu * nv);
+    let flat_edge = rng.chance(0.2).then(|| {
+        // The last two rows equal: ∂z/∂u = 0 along u = U1.
+        z.copy_within((nu - 2) * nv..(nu - 1) * nv, (nu - 1) * nv);
+        note += " flat edge";
+        ku[nu]
+    });
     let points = (0..nu)
         .flat_map(|i| (0..nv).map(move |j| (i, j)))
         .map(|(i, j)| [x0 + hx * sum(&ku, i, p), y0 + hy * sum(&kv, j, q), z[i * nv + j]])
@@ -1383,6 +1419,7 @@ fn bspline_grid(rng: &mut Mix) -> Grid {
         dom,
         targets,
         note,
+        flat_edge,
     }
 }
 
@@ -1404,7 +1441,7 @@ fn tag(k: i32) -> String {
 fn direction(rng: &mut Mix, dy_zero: bool) -> (f64, f64) {
     let sx = rng.pick(&[1.0, -1.0]);
     let sy = rng.pick(&[1.0, -1.0]);
-    let e = pow2(rng.range(-2, 2));
+    let e = scale(rng);
     if dy_zero {
         return (sx * e, 0.0);
     }
@@ -1417,6 +1454,16 @@ fn direction(rng: &mut Mix, dy_zero: bool) -> (f64, f64) {
         _ => (1.0, rng.signed()),
     };
     (sx * dx * e, sy * dy * e)
+}
+
+/// A power of two about 1, or (one time in twenty) `2^±100`: `t` scales
+/// inversely.
+fn scale(rng: &mut Mix) -> f64 {
+    if rng.chance(0.05) {
+        pow2(rng.pick(&[-100, 100]))
+    } else {
+        pow2(rng.range(-2, 2))
+    }
 }
 
 /// The builder of rays for one patch.
@@ -1453,6 +1500,10 @@ impl Aim<'_> {
         let (dx, dy) = direction(rng, self.rational);
         let slant = rng.chance(0.25) && !(self.rational && t.u != 0.0 && t.u != 1.0);
         let dz = if slant { rng.pick(&[0.0625, -0.25, 1.0, -4.0]) * dx.abs().max(dy.abs()) } else { 0.0 };
+        self.cross_with(rng, t, [dx, dy, dz])
+    }
+
+    fn cross_with(&self, rng: &mut Mix, t: &Target, [dx, dy, dz]: [f64; 3]) -> ([f64; 3], [f64; 3], String) {
         let t0 = self.lead_time(dx.abs().max(dy.abs()));
         let (x, y) = self.xy(t.u, t.v);
         let z = self.surf.height(&qf(t.u), &qf(t.v));
@@ -1469,7 +1520,7 @@ impl Aim<'_> {
     fn vertical(&self, rng: &mut Mix, t: &Target) -> ([f64; 3], [f64; 3], String) {
         let (x, y) = self.xy(t.u, t.v);
         let (kx, ky) = (wiggle(rng), wiggle(rng));
-        let e = pow2(rng.range(-1, 1));
+        let e = scale(rng);
         let down = rng.chance(0.5);
         let o = [ulps(nearest(&x), kx), ulps(nearest(&y), ky), if down { 2.0 } else { -2.0 }];
         let d = [0.0, 0.0, if down { -e } else { e }];
@@ -1591,17 +1642,58 @@ impl Aim<'_> {
 }
 
 /// The case of `family` for `seed`.
+///
+/// One case in five is *lowered* when its ray is horizontal: the patch is
+/// shifted down by the ray's height (each control height rounded) and the
+/// same construction replayed on it, so that the aimed height is about 0 and
+/// one ulp of `oz` is tiny (down to 5e-324). Then a grazing hit lies that
+/// close to its edge, and a tangent ray's two hits are some
+/// `sqrt(ulp(oz) / z″)` apart: 1e-16 and far below.
 pub fn generate(family: Family, seed: u64) -> Case {
     let mut rng = Mix(seed);
-    let g = match family {
+    let mut g = match family {
         Family::Tensor => tensor_grid(&mut rng, false),
         Family::Rational => tensor_grid(&mut rng, true),
         Family::Triangle => triangle_grid(&mut rng),
         Family::Bspline => bspline_grid(&mut rng),
     };
-    let mut case = Case {
+    let lower = rng.chance(0.2);
+    let replay = rng.clone();
+    let (mut origin, mut dir, mut how) = aim_ray(&g, family, &mut rng);
+    if lower && dir[2] == 0.0 && origin[2] != 0.0 {
+        shift_heights(&mut g.spec, origin[2]);
+        g.note += " lowered";
+        (origin, dir, how) = aim_ray(&g, family, &mut replay.clone());
+    }
+    Case {
         family,
         seed,
+        label: format!("{} {} {}: {how}", family.name(), shape(&g.spec), g.note),
+        spec: g.spec,
+        affine: g.affine,
+        origin,
+        dir,
+    }
+}
+
+/// Every control height minus `c` (rounded).
+fn shift_heights(spec: &mut PatchSpec, c: f64) {
+    match spec {
+        PatchSpec::Tensor { points, .. } | PatchSpec::Triangle { points, .. } | PatchSpec::Bspline { points, .. } => {
+            for p in points {
+                p[2] -= c;
+            }
+        }
+        _ => unreachable!("the adversary's patches"),
+    }
+}
+
+/// A ray aimed at a random feature of `g` by a random construction, and
+/// how (`"… @ feature"`).
+fn aim_ray(g: &Grid, family: Family, rng: &mut Mix) -> ([f64; 3], [f64; 3], String) {
+    let probe = Case {
+        family,
+        seed: 0,
         label: String::new(),
         spec: g.spec.clone(),
         affine: g.affine,
@@ -1609,26 +1701,34 @@ pub fn generate(family: Family, seed: u64) -> Case {
         dir: [0.0; 3],
     };
     let aim = Aim {
-        surf: Surface::of(&case),
-        g: &g,
+        surf: Surface::of(&probe),
+        g,
         rational: family == Family::Rational,
     };
-    let t = g.targets[rng.range(0, g.targets.len() as i64 - 1) as usize].clone();
-    let built = match rng.range(0, 4) {
-        0 => aim.cross(&mut rng, &t),
-        1 => aim.vertical(&mut rng, &t),
+    let mut t = g.targets[rng.range(0, g.targets.len() as i64 - 1) as usize].clone();
+    let (o, d, how) = match rng.range(0, if g.flat_edge.is_some() { 6 } else { 4 }) {
+        5 => {
+            // Along u at the rounded height of the flat edge: a double hit
+            // on the edge, split by the rounding into two hits straddling
+            // it (or none).
+            let c = g.flat_edge.unwrap();
+            let r = dyadic01(rng);
+            let v = g.dom[2] + (g.dom[3] - g.dom[2]) * rng.pick(&[0.0, r, r, 1.0]);
+            t = target(format!("flat edge u={c} v={v}"), c, v, None);
+            let dx = rng.pick(&[1.0, -1.0]) * scale(rng);
+            let (o, d, how) = aim.cross_with(rng, &t, [dx, 0.0, 0.0]);
+            (o, d, how.replace("cross", "edge-tangent"))
+        }
+        0 => aim.cross(rng, &t),
+        1 => aim.vertical(rng, &t),
         2 => match t.along {
-            Some(along) => aim.along(&mut rng, &t, along),
-            None => aim.cross(&mut rng, &t),
+            Some(along) => aim.along(rng, &t, along),
+            None => aim.cross(rng, &t),
         },
-        3 => aim.tangent(&mut rng, &t).unwrap_or_else(|| aim.cross(&mut rng, &t)),
-        _ => aim.start(&mut rng, &t),
+        3 => aim.tangent(rng, &t).unwrap_or_else(|| aim.cross(rng, &t)),
+        _ => aim.start(rng, &t),
     };
-    let (origin, dir, how) = built;
-    case.origin = origin;
-    case.dir = dir;
-    case.label = format!("{} {} {}: {how} @ {}", family.name(), shape(&case.spec), g.note, t.name);
-    case
+    (o, d, format!("{how} @ {}", t.name))
 }
 
 fn shape(spec: &PatchSpec) -> String {

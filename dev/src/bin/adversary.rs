@@ -13,7 +13,8 @@
 //!
 //! Options: `--seed S` (default 1), `--cases N` per family (default 2000),
 //! `--family tensor|rational|triangle|bspline|all` (default all), `--dump DIR`,
-//! `--threads T` (default 1), `--case-seed X` (one case, its full report).
+//! `--threads T` (default 1), `--case-seed X` (one case, its full report),
+//! `--list` (one line per case: seed, answer, true hits, reported hits, label).
 
 #[path = "../../../tests/adversary/mod.rs"]
 mod adversary;
@@ -32,6 +33,7 @@ struct Args {
     dump: Option<PathBuf>,
     threads: usize,
     case_seed: Option<u64>,
+    list: bool,
 }
 
 fn parse_u64(s: &str) -> u64 {
@@ -55,6 +57,7 @@ fn parse_args() -> Args {
         dump: None,
         threads: 1,
         case_seed: None,
+        list: false,
     };
     let argv: Vec<String> = std::env::args().skip(1).collect();
     let mut it = argv.iter();
@@ -74,6 +77,7 @@ fn parse_args() -> Args {
             "--dump" => a.dump = Some(PathBuf::from(value())),
             "--threads" => a.threads = parse_u64(&value()).max(1) as usize,
             "--case-seed" => a.case_seed = Some(parse_u64(&value())),
+            "--list" => a.list = true,
             other => die(&format!("unknown option {other} (see the doc comment of dev/src/bin/adversary.rs)")),
         }
     }
@@ -127,6 +131,8 @@ struct Tally {
     errors: u64,
     panics: u64,
     degenerate: u64,
+    /// A few cases whose truth is a curve of hits.
+    degenerate_examples: Vec<String>,
     time: Duration,
     slowest: (Duration, u64),
     /// Fault kind → (construction, feature) → cases.
@@ -158,6 +164,9 @@ fn record(t: &mut Tally, run: &Run, dump: Option<&Path>) {
     t.certified += v.certified as u64;
     t.undecided += v.undecided as u64;
     t.degenerate += u64::from(v.degenerate);
+    if v.degenerate && t.degenerate_examples.len() < 3 {
+        t.degenerate_examples.push(format!("{:#x} {:?}: {}", case.seed, v.answer, case.label));
+    }
     match v.answer {
         Answer::Complete => {}
         Answer::Incomplete => t.incomplete += 1,
@@ -207,6 +216,12 @@ fn run_family(args: &Args, family: Family) -> (Tally, Duration) {
                     *n - 1
                 };
                 let run = run_one(family, case_seed(args.seed, family, k));
+                if let (true, Run::Judged(c, v)) = (args.list, &run) {
+                    println!(
+                        "{:#018x} {:?} true {} (edge {}) cert {} undec {}  {}",
+                        c.seed, v.answer, v.roots, v.near_feature, v.certified, v.undecided, c.label
+                    );
+                }
                 record(&mut tally.lock().unwrap(), &run, args.dump.as_deref());
             });
         }
@@ -284,6 +299,9 @@ fn main() {
         .iter()
         .any(|(_, t, _)| t.panics > 0 || t.faults.keys().any(|f| f.breaks_contract()));
     for (f, t, _) in &rows {
+        for d in &t.degenerate_examples {
+            println!("{} degenerate truth (a curve of hits, not judged): {d}", f.name());
+        }
         for (fault, labels) in &t.by_label {
             println!("\n== {} / {}: {} case(s) by construction:", f.name(), fault.name(), t.faults[fault]);
             for (label, n) in labels {
