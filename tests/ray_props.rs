@@ -896,7 +896,20 @@ proptest! {
         judge_adversary(adversary::Family::Triangle, seed)?;
     }
 
+    // FAILS on the current library (rootclip e5ad3ed), so ignored until the
+    // library is fixed (run it with `cargo test --release --test ray_props --
+    // --ignored adversary_bspline`): one of its 64 cases, seed
+    // 0xfa89edde6778d48a (= 18053222120765838474), a biquadratic B-spline with
+    // creases at u = 1 and v = 1 and a horizontal ray along the crease line
+    // u = 1 at exactly the height of the knot corner (1, 1), where z(1, v) has
+    // a V-shaped minimum: the ray touches the surface without crossing it, and
+    // the hit is reported Certified ("a transversal one"): fault `tangent`.
+    // The library's path: bspline::settle_on_edge keeps an exact root on a knot
+    // line for the piece below the line only, certified, and
+    // merge_knot_line_duplicates skips the piecewise Krawczyk proof for a
+    // single report. Smallest reproduction: /work/adv-failures/minimal/.
     #[test]
+    #[ignore = "fails on the current library: a certified crease touch (see the comment)"]
     fn adversary_bspline(seed in any::<u64>()) {
         judge_adversary(adversary::Family::Bspline, seed)?;
     }

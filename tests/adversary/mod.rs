@@ -49,9 +49,11 @@
 //!   `t ≥ 0` lies in the `(u, v)` box of a reported hit ([`Fault::Miss`]), and in
 //!   the `t` box of one such hit ([`Fault::MissT`]);
 //! * **no phantom**: every certified box holds exactly one true hit of the line
-//!   ([`Fault::Phantom`]: none, [`Fault::Multiple`]: more), whose `t` lies in
-//!   the `t` box and in the range `t ≥ 0` ([`Fault::TBox`]); no true hit is
-//!   claimed by two certified boxes ([`Fault::Duplicate`]);
+//!   ([`Fault::Phantom`]: none, [`Fault::Multiple`]: more), a transversal one
+//!   ([`Fault::Tangent`]: a multiple zero, or a touch of a crease where the two
+//!   pieces' one-sided slopes differ in sign), whose `t` lies in the `t` box
+//!   and in the range `t ≥ 0` ([`Fault::TBox`]); no true hit is claimed by two
+//!   certified boxes ([`Fault::Duplicate`]);
 //! * every reported `(u, v)` lies in the closed domain ([`Fault::Domain`]);
 //! * no error ([`Fault::Error`]); a `ZeroEquation` answer on these non-planar
 //!   patches is recorded as suspicious ([`Fault::ZeroEquation`]) but keeps the
@@ -195,7 +197,14 @@ impl Poly {
         self.0.iter().rev().fold(qi(0), |acc, c| acc * x + c)
     }
     fn deriv(&self) -> Poly {
-        Poly::new(self.0.iter().enumerate().skip(1).map(|(k, c)| c * qi(k as i64)).collect())
+        Poly::new(
+            self.0
+                .iter()
+                .enumerate()
+                .skip(1)
+                .map(|(k, c)| c * qi(k as i64))
+                .collect(),
+        )
     }
     fn add(&self, o: &Poly) -> Poly {
         let n = self.0.len().max(o.0.len());
@@ -316,7 +325,14 @@ impl IPoly {
     }
 
     fn deriv(&self) -> IPoly {
-        IPoly::primitive(self.0.iter().enumerate().skip(1).map(|(k, c)| c * BigInt::from(k)).collect())
+        IPoly::primitive(
+            self.0
+                .iter()
+                .enumerate()
+                .skip(1)
+                .map(|(k, c)| c * BigInt::from(k))
+                .collect(),
+        )
     }
 
     /// A positive multiple of the remainder of `self` by `b` (pseudo-division
@@ -418,7 +434,9 @@ impl Sturm {
     }
     /// Distinct zeros in `(a, b]` (Sturm's theorem, `a < b`).
     fn count(&self, a: &Q, b: &Q) -> usize {
-        self.changes(a).checked_sub(self.changes(b)).expect("Sturm counts decrease")
+        self.changes(a)
+            .checked_sub(self.changes(b))
+            .expect("Sturm counts decrease")
     }
     /// Distinct zeros in the open `(a, b)`.
     fn count_open(&self, a: &Q, b: &Q) -> usize {
@@ -435,6 +453,8 @@ impl Sturm {
 struct Piece {
     lo: Q,
     hi: Q,
+    /// The polynomial as found (a positive multiple), multiple zeros and all.
+    raw: IPoly,
     p: IPoly,
     sturm: Sturm,
 }
@@ -449,9 +469,58 @@ pub enum Root {
 
 impl Piece {
     fn new(lo: Q, hi: Q, raw: &Poly) -> Piece {
-        let p = IPoly::of(raw).squarefree();
+        let raw = IPoly::of(raw);
+        let p = raw.squarefree();
         let sturm = Sturm::new(&p);
-        Piece { lo, hi, p, sturm }
+        Piece { lo, hi, raw, p, sturm }
+    }
+
+    /// The sign of `q` at the zero isolated in `(lo, hi)`, exactly.
+    fn sign_at_iso(&self, lo: &Q, hi: &Q, q: &IPoly) -> i32 {
+        if q.degree() == 0 {
+            return q.0.first().map_or(0, int_sgn);
+        }
+        if q.degree() == 1 {
+            // The zero against c = −q0/q1: by the sign of p at c.
+            let c = Q::new(-&q.0[0], q.0[1].clone());
+            let side = if &c <= lo {
+                1
+            } else if &c >= hi {
+                -1
+            } else {
+                match self.p.sign_at(&c) {
+                    0 => 0,
+                    x if x == self.sign_right_of(lo) => 1,
+                    _ => -1,
+                }
+            };
+            return side * int_sgn(&q.0[1]);
+        }
+        // A common zero with p in (lo, hi) is the zero itself.
+        let g = self.p.gcd(q);
+        if g.degree() >= 1 && Sturm::new(&g).count_open(lo, hi) >= 1 {
+            return 0;
+        }
+        let qs = Sturm::new(&q.squarefree());
+        let (mut lo, mut hi) = (lo.clone(), hi.clone());
+        loop {
+            if qs.count(&lo, &hi) == 0 && q.sign_at(&lo) != 0 {
+                return q.sign_at(&((&lo + &hi) / qi(2)));
+            }
+            if let Some(x) = self.bisect(&mut lo, &mut hi) {
+                return q.sign_at(&x);
+            }
+        }
+    }
+
+    /// The sign of the raw polynomial's derivative at a zero in this piece:
+    /// 0 for a multiple zero (a tangency).
+    fn slope_at(&self, r: &Root) -> i32 {
+        let d = self.raw.deriv();
+        match r {
+            Root::Exact(x) => d.sign_at(x),
+            Root::Iso { lo, hi, .. } => self.sign_at_iso(lo, hi, &d),
+        }
     }
 
     /// Every distinct zero in the closed piece.
@@ -522,6 +591,10 @@ pub struct Truth {
     pieces: Vec<Piece>,
     /// The distinct zeros, any `t`.
     pub roots: Vec<Root>,
+    /// Per zero: the line crosses the surface there transversally (a simple
+    /// zero; on a knot line shared by two pieces, both one-sided slopes
+    /// non-zero and of one sign: not a tangency, not a touch of a crease).
+    pub transversal: Vec<bool>,
     /// A piece's polynomial vanishes identically: a curve of hits.
     pub degenerate: bool,
 }
@@ -531,6 +604,7 @@ impl Truth {
     pub fn of(case: &Case) -> Truth {
         let r = restrict(case);
         let (mut pieces, mut roots, mut degenerate) = (Vec::new(), Vec::<Root>::new(), false);
+        let (mut slopes, mut transversal) = (Vec::new(), Vec::new());
         for (lo, hi, raw) in &r.pieces {
             if raw.is_zero() {
                 degenerate = true;
@@ -538,10 +612,20 @@ impl Truth {
             }
             let piece = Piece::new(lo.clone(), hi.clone(), raw);
             for root in piece.roots(pieces.len()) {
-                // A zero on a knot line shared by two pieces is one hit.
-                let dup = matches!(&root, Root::Exact(x) if roots.iter().any(|r| matches!(r, Root::Exact(y) if y == x)));
-                if !dup {
-                    roots.push(root);
+                let slope = piece.slope_at(&root);
+                // A zero on a knot line shared by two pieces is one hit,
+                // a crossing if both pieces cross the same way.
+                let seen = match &root {
+                    Root::Exact(x) => roots.iter().position(|r| matches!(r, Root::Exact(y) if y == x)),
+                    Root::Iso { .. } => None,
+                };
+                match seen {
+                    Some(j) => transversal[j] = transversal[j] && slope != 0 && slope == slopes[j],
+                    None => {
+                        roots.push(root);
+                        slopes.push(slope);
+                        transversal.push(slope != 0);
+                    }
                 }
             }
             pieces.push(piece);
@@ -550,51 +634,16 @@ impl Truth {
             line: r.line,
             pieces,
             roots,
+            transversal,
             degenerate,
         }
     }
 
     /// The sign of `q` at the zero `r`, exactly.
     pub fn sign_at(&self, r: &Root, q: &Poly) -> i32 {
-        let (k, lo, hi) = match r {
-            Root::Exact(x) => return sgn(&q.eval(x)),
-            Root::Iso { piece, lo, hi } => (*piece, lo, hi),
-        };
-        let piece = &self.pieces[k];
-        if q.degree() == 0 {
-            return q.0.first().map_or(0, sgn);
-        }
-        if q.degree() == 1 {
-            // The zero against c = −q0/q1: by the sign of p at c.
-            let c = -&q.0[0] / &q.0[1];
-            let side = if &c <= lo {
-                1
-            } else if &c >= hi {
-                -1
-            } else {
-                match piece.p.sign_at(&c) {
-                    0 => 0,
-                    x if x == piece.sign_right_of(lo) => 1,
-                    _ => -1,
-                }
-            };
-            return side * sgn(&q.0[1]);
-        }
-        // A common zero with p in (lo, hi) is r itself.
-        let qz = IPoly::of(q);
-        let g = piece.p.gcd(&qz);
-        if g.degree() >= 1 && Sturm::new(&g).count_open(lo, hi) >= 1 {
-            return 0;
-        }
-        let qs = Sturm::new(&qz.squarefree());
-        let (mut lo, mut hi) = (lo.clone(), hi.clone());
-        loop {
-            if qs.count(&lo, &hi) == 0 && qz.sign_at(&lo) != 0 {
-                return qz.sign_at(&((&lo + &hi) / qi(2)));
-            }
-            if let Some(x) = piece.bisect(&mut lo, &mut hi) {
-                return sgn(&q.eval(&x));
-            }
+        match r {
+            Root::Exact(x) => sgn(&q.eval(x)),
+            Root::Iso { piece, lo, hi } => self.pieces[*piece].sign_at_iso(lo, hi, &IPoly::of(q)),
         }
     }
 
@@ -683,7 +732,9 @@ fn powq(x: &Q, k: usize) -> Q {
 
 fn bernstein(n: usize, x: &Q) -> Vec<Q> {
     let y = qi(1) - x;
-    (0..=n).map(|i| qi(binom(n, i)) * powq(x, i) * powq(&y, n - i)).collect()
+    (0..=n)
+        .map(|i| qi(binom(n, i)) * powq(x, i) * powq(&y, n - i))
+        .collect()
 }
 
 /// The `p + 1` B-spline basis functions of span `span` at `x` (the span's
@@ -756,7 +807,11 @@ impl Surface {
                     dom: unit,
                 }
             }
-            PatchSpec::Triangle { degree, points, weights } => {
+            PatchSpec::Triangle {
+                degree,
+                points,
+                weights,
+            } => {
                 assert!(weights.is_none(), "adversary: rational triangles are not refereed");
                 let n = *degree;
                 let mut k = 0;
@@ -907,7 +962,11 @@ impl Surface {
             vs = kv.iter().map(nearest).collect();
         }
         let d = |x: f64, cs: &[f64]| cs.iter().map(|c| (x - c).abs()).fold(f64::INFINITY, f64::min);
-        let hyp = if matches!(self.kind, Kind::Triangle(_)) { (1.0 - u - v).abs() } else { f64::INFINITY };
+        let hyp = if matches!(self.kind, Kind::Triangle(_)) {
+            (1.0 - u - v).abs()
+        } else {
+            f64::INFINITY
+        };
         d(u, &us).min(d(v, &vs)).min(hyp)
     }
 
@@ -1018,21 +1077,22 @@ pub fn restrict(case: &Case) -> Restriction {
     match clip(&surf.constraints(&line.u, &line.v)) {
         None => {}
         Some((Some(lo), Some(hi))) => {
-            let mut cuts: Vec<Q> = surf.breaks(&line.u, &line.v).into_iter().filter(|s| *s > lo && *s < hi).collect();
+            let mut cuts: Vec<Q> = surf
+                .breaks(&line.u, &line.v)
+                .into_iter()
+                .filter(|s| *s > lo && *s < hi)
+                .collect();
             cuts.push(lo.clone());
             cuts.push(hi.clone());
             cuts.sort();
             cuts.dedup();
             if lo == hi {
-                // The line touches the domain at one point: the piece's
-                // zero set is that point or nothing.
-                let val = on_cell(&lo, cell_at(&lo));
-                let p = if sgn(&val) == 0 {
-                    Poly::linear(-&lo, qi(1))
-                } else {
-                    Poly::constant(val)
-                };
-                pieces.push((lo.clone(), lo, p));
+                // The line touches the domain at one point: the piece is
+                // that point, its polynomial the cell's there.
+                let cell = cell_at(&lo);
+                let xs = samples(&lo, &(&lo + qi(1)), deg);
+                let ys: Vec<Q> = xs.iter().map(|s| on_cell(s, cell)).collect();
+                pieces.push((lo.clone(), lo, interpolate(&xs, &ys)));
             }
             for w in cuts.windows(2) {
                 pieces.push((w[0].clone(), w[1].clone(), fit(&w[0], &w[1])));
@@ -1216,7 +1276,10 @@ fn dyadic01(rng: &mut Mix) -> f64 {
 /// surface: many hits, or a ridge of near-tangency).
 fn heights(rng: &mut Mix, count: usize) -> (Vec<f64>, String) {
     match rng.range(0, 9) {
-        0 | 1 => ((0..count).map(|_| rng.range(-256, 256) as f64 / 256.0).collect(), "coarse z".into()),
+        0 | 1 => (
+            (0..count).map(|_| rng.range(-256, 256) as f64 / 256.0).collect(),
+            "coarse z".into(),
+        ),
         2 | 3 => {
             let c = rng.signed();
             let e = rng.pick(&[-10, -20, -30, -40, -50]);
@@ -1325,8 +1388,18 @@ fn triangle_grid(rng: &mut Mix) -> Grid {
     let r = dyadic01(rng);
     let targets = vec![
         target("corner (0, 0)", 0.0, 0.0, Some(Along::U(0.0))),
-        target("corner (1, 0)", 1.0, 0.0, Some(if rng.chance(0.5) { Along::V(0.0) } else { Along::Hyp })),
-        target("corner (0, 1)", 0.0, 1.0, Some(if rng.chance(0.5) { Along::U(0.0) } else { Along::Hyp })),
+        target(
+            "corner (1, 0)",
+            1.0,
+            0.0,
+            Some(if rng.chance(0.5) { Along::V(0.0) } else { Along::Hyp }),
+        ),
+        target(
+            "corner (0, 1)",
+            0.0,
+            1.0,
+            Some(if rng.chance(0.5) { Along::U(0.0) } else { Along::Hyp }),
+        ),
         target("edge u=0", 0.0, r, Some(Along::U(0.0))),
         target("edge v=0", r, 0.0, Some(Along::V(0.0))),
         target("hypotenuse", r, 1.0 - r, Some(Along::Hyp)),
@@ -1396,7 +1469,12 @@ fn bspline_grid(rng: &mut Mix) -> Grid {
     let (su, sv) = (dom[1] * dyadic01(rng), dom[3] * dyadic01(rng));
     for &(k, c) in &iu {
         targets.push(target(format!("knot u={k}{}", crease(c)), k, sv, Some(Along::U(k))));
-        targets.push(target(format!("knot u={k}{} at v=0", crease(c)), k, 0.0, Some(Along::V(0.0))));
+        targets.push(target(
+            format!("knot u={k}{} at v=0", crease(c)),
+            k,
+            0.0,
+            Some(Along::V(0.0)),
+        ));
     }
     for &(k, c) in &iv {
         targets.push(target(format!("knot v={k}{}", crease(c)), su, k, Some(Along::V(k))));
@@ -1404,7 +1482,12 @@ fn bspline_grid(rng: &mut Mix) -> Grid {
     for &(a, ca) in &iu {
         for &(b, cb) in &iv {
             let along = if rng.chance(0.5) { Along::U(a) } else { Along::V(b) };
-            targets.push(target(format!("knot corner ({a}{}, {b}{})", crease(ca), crease(cb)), a, b, Some(along)));
+            targets.push(target(
+                format!("knot corner ({a}{}, {b}{})", crease(ca), crease(cb)),
+                a,
+                b,
+                Some(along),
+            ));
         }
     }
     Grid {
@@ -1499,7 +1582,11 @@ impl Aim<'_> {
     fn cross(&self, rng: &mut Mix, t: &Target) -> ([f64; 3], [f64; 3], String) {
         let (dx, dy) = direction(rng, self.rational);
         let slant = rng.chance(0.25) && !(self.rational && t.u != 0.0 && t.u != 1.0);
-        let dz = if slant { rng.pick(&[0.0625, -0.25, 1.0, -4.0]) * dx.abs().max(dy.abs()) } else { 0.0 };
+        let dz = if slant {
+            rng.pick(&[0.0625, -0.25, 1.0, -4.0]) * dx.abs().max(dy.abs())
+        } else {
+            0.0
+        };
         self.cross_with(rng, t, [dx, dy, dz])
     }
 
@@ -1522,7 +1609,11 @@ impl Aim<'_> {
         let (kx, ky) = (wiggle(rng), wiggle(rng));
         let e = scale(rng);
         let down = rng.chance(0.5);
-        let o = [ulps(nearest(&x), kx), ulps(nearest(&y), ky), if down { 2.0 } else { -2.0 }];
+        let o = [
+            ulps(nearest(&x), kx),
+            ulps(nearest(&y), ky),
+            if down { 2.0 } else { -2.0 },
+        ];
         let d = [0.0, 0.0, if down { -e } else { e }];
         (o, d, format!("vertical ox{} oy{}", tag(kx), tag(ky)))
     }
@@ -1734,7 +1825,12 @@ fn aim_ray(g: &Grid, family: Family, rng: &mut Mix) -> ([f64; 3], [f64; 3], Stri
 fn shape(spec: &PatchSpec) -> String {
     match spec {
         PatchSpec::Tensor { degree, weights, .. } => {
-            format!("{}({}, {})", if weights.is_some() { "rational" } else { "" }, degree[0], degree[1])
+            format!(
+                "{}({}, {})",
+                if weights.is_some() { "rational" } else { "" },
+                degree[0],
+                degree[1]
+            )
         }
         PatchSpec::Triangle { degree, .. } => format!("({degree})"),
         PatchSpec::Bspline {
@@ -1758,6 +1854,7 @@ pub enum Fault {
     MissT,
     Phantom,
     Multiple,
+    Tangent,
     TBox,
     Duplicate,
     Domain,
@@ -1766,11 +1863,12 @@ pub enum Fault {
 }
 
 impl Fault {
-    pub const ALL: [Fault; 9] = [
+    pub const ALL: [Fault; 10] = [
         Fault::Miss,
         Fault::MissT,
         Fault::Phantom,
         Fault::Multiple,
+        Fault::Tangent,
         Fault::TBox,
         Fault::Duplicate,
         Fault::Domain,
@@ -1793,6 +1891,7 @@ impl Fault {
             Fault::MissT => "miss-t",
             Fault::Phantom => "phantom",
             Fault::Multiple => "multiple",
+            Fault::Tangent => "tangent",
             Fault::TBox => "t-box",
             Fault::Duplicate => "duplicate",
             Fault::Domain => "domain",
@@ -1867,7 +1966,11 @@ fn describe(h: &Hit) -> String {
 }
 
 fn judge_outcome(case: &Case, truth: &Truth, out: rootclip::Result<RayOutcome>, time: Duration) -> Verdict {
-    let in_range: Vec<bool> = truth.roots.iter().map(|r| truth.in_t(r, [0.0, f64::INFINITY])).collect();
+    let in_range: Vec<bool> = truth
+        .roots
+        .iter()
+        .map(|r| truth.in_t(r, [0.0, f64::INFINITY]))
+        .collect();
     let mut v = Verdict {
         answer: Answer::Complete,
         roots: in_range.iter().filter(|x| **x).count(),
@@ -1887,7 +1990,11 @@ fn judge_outcome(case: &Case, truth: &Truth, out: rootclip::Result<RayOutcome>, 
             return v;
         }
         Ok(RayOutcome::Hits(h)) => {
-            v.answer = if h.complete { Answer::Complete } else { Answer::Incomplete };
+            v.answer = if h.complete {
+                Answer::Complete
+            } else {
+                Answer::Incomplete
+            };
             (h.hits, h.complete)
         }
         Ok(RayOutcome::Degenerate(Degeneracy::Unresolved(h))) => {
@@ -1914,19 +2021,37 @@ fn judge_outcome(case: &Case, truth: &Truth, out: rootclip::Result<RayOutcome>, 
     let mut claimed: Vec<Option<usize>> = vec![None; truth.roots.len()];
     for (k, h) in hits.iter().enumerate() {
         if !surf.contains(&qf(h.u), &qf(h.v)) {
-            v.faults.push((Fault::Domain, format!("hit {k} at ({:e}, {:e})", h.u, h.v)));
+            v.faults
+                .push((Fault::Domain, format!("hit {k} at ({:e}, {:e})", h.u, h.v)));
         }
         if !h.is_certified() {
             v.undecided += 1;
             continue;
         }
         v.certified += 1;
-        let inside: Vec<usize> = (0..truth.roots.len()).filter(|&r| truth.in_uv(&truth.roots[r], &h.bx)).collect();
+        let inside: Vec<usize> = (0..truth.roots.len())
+            .filter(|&r| truth.in_uv(&truth.roots[r], &h.bx))
+            .collect();
         match inside[..] {
-            [] => v.faults.push((Fault::Phantom, format!("certified hit {k}, {}, holds no true hit", describe(h)))),
+            [] => v.faults.push((
+                Fault::Phantom,
+                format!("certified hit {k}, {}, holds no true hit", describe(h)),
+            )),
             [r] => {
+                if !truth.transversal[r] {
+                    let what = format!(
+                        "certified hit {k}, {}, holds {}, a tangency or crease touch",
+                        describe(h),
+                        root_name(r)
+                    );
+                    v.faults.push((Fault::Tangent, what));
+                }
                 if !truth.in_t(&truth.roots[r], h.bx.t) || !in_range[r] {
-                    let what = format!("certified hit {k}, {}: {} not in its t box / t ≥ 0", describe(h), root_name(r));
+                    let what = format!(
+                        "certified hit {k}, {}: {} not in its t box / t ≥ 0",
+                        describe(h),
+                        root_name(r)
+                    );
                     v.faults.push((Fault::TBox, what));
                 }
                 if let Some(other) = claimed[r] {
@@ -1935,7 +2060,9 @@ fn judge_outcome(case: &Case, truth: &Truth, out: rootclip::Result<RayOutcome>, 
                 }
                 claimed[r] = Some(k);
             }
-            _ => v.faults.push((Fault::Multiple, format!("certified hit {k} holds true hits {inside:?}"))),
+            _ => v
+                .faults
+                .push((Fault::Multiple, format!("certified hit {k} holds true hits {inside:?}"))),
         }
     }
     if complete {
@@ -1944,7 +2071,8 @@ fn judge_outcome(case: &Case, truth: &Truth, out: rootclip::Result<RayOutcome>, 
             if uv.is_empty() {
                 v.faults.push((Fault::Miss, format!("{} in no hit box", root_name(r))));
             } else if !uv.iter().any(|h| truth.in_t(root, h.bx.t)) {
-                v.faults.push((Fault::MissT, format!("{} in no covering hit's t box", root_name(r))));
+                v.faults
+                    .push((Fault::MissT, format!("{} in no covering hit's t box", root_name(r))));
             }
         }
     }
@@ -1975,9 +2103,9 @@ impl Case {
     /// A size for picking small reproductions: control points, then degree.
     pub fn size(&self) -> usize {
         match &self.spec {
-            PatchSpec::Tensor { points, .. } | PatchSpec::Triangle { points, .. } | PatchSpec::Bspline { points, .. } => {
-                points.len()
-            }
+            PatchSpec::Tensor { points, .. }
+            | PatchSpec::Triangle { points, .. }
+            | PatchSpec::Bspline { points, .. } => points.len(),
             _ => usize::MAX,
         }
     }
@@ -2054,6 +2182,7 @@ mod tests {
             },
             pieces: vec![Piece::new(qi(0), qi(2), &p)],
             roots: vec![],
+            transversal: vec![],
             degenerate: false,
         };
         let r = &t.pieces[0].roots(0)[0];
@@ -2081,7 +2210,10 @@ mod tests {
         assert_eq!(nearest(&(qf(5e-324) * q(3, 2))), 1e-323);
         let half_ulp = qf(1.0) + qf(f64::EPSILON) / qi(2);
         assert_eq!(nearest(&half_ulp), 1.0);
-        assert_eq!(nearest(&(qf(1.0) + qf(f64::EPSILON) * q(3, 2))), 1.0 + 2.0 * f64::EPSILON);
+        assert_eq!(
+            nearest(&(qf(1.0) + qf(f64::EPSILON) * q(3, 2))),
+            1.0 + 2.0 * f64::EPSILON
+        );
         assert_eq!(nearest(&qf(1e300)), 1e300);
     }
 
@@ -2109,7 +2241,11 @@ mod tests {
         let horizontal = |oz: f64| mk(oz, [1.0, 0.0, 0.0], [-1.0, 0.5, 0.0]);
         let on_edge = Truth::of(&horizontal(c));
         assert_eq!(on_edge.roots.len(), 1);
-        assert!(matches!(&on_edge.roots[0], Root::Exact(t) if *t == qi(2)), "{:?}", on_edge.roots);
+        assert!(
+            matches!(&on_edge.roots[0], Root::Exact(t) if *t == qi(2)),
+            "{:?}",
+            on_edge.roots
+        );
         assert!(Truth::of(&horizontal(c.next_up())).roots.is_empty());
         let inside = Truth::of(&horizontal(c.next_down()));
         assert_eq!(inside.roots.len(), 1);
@@ -2122,11 +2258,59 @@ mod tests {
         assert_eq!(Truth::of(&vertical(1.0)).roots.len(), 1);
         assert!(Truth::of(&vertical(1.0f64.next_up())).roots.is_empty());
         // And the library on all of them.
-        for case in [horizontal(c), horizontal(c.next_up()), horizontal(c.next_down()), vertical(1.0)] {
+        for case in [
+            horizontal(c),
+            horizontal(c.next_up()),
+            horizontal(c.next_down()),
+            vertical(1.0),
+        ] {
             let v = judge(&case);
             assert!(!v.fails(), "{}", report(&case, &v, "PATCH.json"));
         }
         assert!(TensorPatch::new(1, 1, pts.iter().map(|p| DVec3::from_array(*p)).collect(), None).is_ok());
+    }
+
+    /// `z = (u − ½)²` (bidegree (2, 1), heights ¼, −¼, ¼) and horizontal
+    /// rays along `x`: at `oz = 0` one double hit at `u = ½` (not
+    /// transversal); at `oz = 5e-324` two simple hits `±2^-537` from it; at
+    /// `oz = −5e-324` none. The library must certify neither side of the double
+    /// hit as a simple one.
+    #[test]
+    fn hand_built_tangency() {
+        let mut points = Vec::new();
+        for (i, z) in [0.25, -0.25, 0.25].into_iter().enumerate() {
+            for j in 0..2 {
+                points.push([i as f64 / 2.0, j as f64, z]);
+            }
+        }
+        let case = |oz: f64| Case {
+            family: Family::Tensor,
+            seed: 0,
+            label: "hand tangency".into(),
+            spec: PatchSpec::Tensor {
+                degree: [2, 1],
+                points: points.clone(),
+                weights: None,
+            },
+            affine: [1.0, 0.0, 1.0, 0.0],
+            origin: [-1.0, 0.5, oz],
+            dir: [1.0, 0.0, 0.0],
+        };
+        let double = Truth::of(&case(0.0));
+        assert_eq!(double.roots.len(), 1);
+        assert_eq!(double.approx(&double.roots[0], 60), q(3, 2));
+        assert!(!double.transversal[0]);
+        let split = Truth::of(&case(5e-324));
+        assert_eq!(split.roots.len(), 2);
+        assert!(split.transversal.iter().all(|x| *x));
+        let gap = split.approx(&split.roots[0], 1200) - split.approx(&split.roots[1], 1200);
+        let gap = nearest(&if sgn(&gap) < 0 { -gap } else { gap });
+        assert!((gap / 2f64.powi(-536) - 1.0).abs() < 1e-9, "{gap:e}");
+        assert!(Truth::of(&case(-5e-324)).roots.is_empty());
+        for oz in [0.0, 5e-324, -5e-324] {
+            let v = judge(&case(oz));
+            assert!(!v.fails(), "{}", report(&case(oz), &v, "PATCH.json"));
+        }
     }
 
     /// A degree-1 triangle `z = c·v` and a vertical ray onto its hypotenuse,
@@ -2221,8 +2405,11 @@ mod tests {
             ..case
         };
         let t = Truth::of(&along);
-        assert!(t.roots.iter().any(|r| matches!(r, Root::Exact(x) if *x == qi(2))), "{:?}", t.roots);
+        let crease = t.roots.iter().position(|r| matches!(r, Root::Exact(x) if *x == qi(2)));
         assert_eq!(t.roots.len(), 3, "{:?}", t.roots);
+        // The touch is not a crossing; the other two are.
+        assert_eq!(t.transversal.iter().filter(|x| **x).count(), 2);
+        assert!(!t.transversal[crease.expect("a zero on the crease")]);
     }
 
     /// The judge can fail: the library's answers, mutated, draw each fault.
@@ -2236,7 +2423,9 @@ mod tests {
             let out = intersect(&patch, &ray, &RayOptions::default()).unwrap();
             let RayOutcome::Hits(h) = &out else { continue };
             let in_range = truth.roots.iter().any(|r| truth.in_t(r, [0.0, f64::INFINITY]));
-            let Some(c) = h.hits.iter().position(Hit::is_certified) else { continue };
+            let Some(c) = h.hits.iter().position(Hit::is_certified) else {
+                continue;
+            };
             if !h.complete || !in_range {
                 continue;
             }

@@ -62,7 +62,11 @@ fn parse_args() -> Args {
     let argv: Vec<String> = std::env::args().skip(1).collect();
     let mut it = argv.iter();
     while let Some(flag) = it.next() {
-        let mut value = || it.next().unwrap_or_else(|| die(&format!("{flag} needs a value"))).clone();
+        let mut value = || {
+            it.next()
+                .unwrap_or_else(|| die(&format!("{flag} needs a value")))
+                .clone()
+        };
         match flag.as_str() {
             "--seed" => a.seed = parse_u64(&value()),
             "--cases" => a.cases = parse_u64(&value()),
@@ -78,7 +82,9 @@ fn parse_args() -> Args {
             "--threads" => a.threads = parse_u64(&value()).max(1) as usize,
             "--case-seed" => a.case_seed = Some(parse_u64(&value())),
             "--list" => a.list = true,
-            other => die(&format!("unknown option {other} (see the doc comment of dev/src/bin/adversary.rs)")),
+            other => die(&format!(
+                "unknown option {other} (see the doc comment of dev/src/bin/adversary.rs)"
+            )),
         }
     }
     a
@@ -101,7 +107,10 @@ fn run_one(family: Family, seed: u64) -> Run {
     let case = catch_unwind(|| adversary::generate(family, seed));
     let Ok(case) = case else {
         let dummy = adversary::generate(Family::Tensor, 0);
-        return Run::Panicked(dummy, format!("generator panicked for {} seed {seed:#x}", family.name()));
+        return Run::Panicked(
+            dummy,
+            format!("generator panicked for {} seed {seed:#x}", family.name()),
+        );
     };
     match catch_unwind(AssertUnwindSafe(|| adversary::judge(&case))) {
         Ok(v) => Run::Judged(case, v),
@@ -143,7 +152,11 @@ struct Tally {
 
 /// `"cross"`, `"vertical"`, … and the feature aimed at, from a case's label.
 fn construction(label: &str) -> String {
-    let kind = label.split(": ").nth(1).and_then(|s| s.split_whitespace().next()).unwrap_or("?");
+    let kind = label
+        .split(": ")
+        .nth(1)
+        .and_then(|s| s.split_whitespace().next())
+        .unwrap_or("?");
     let feature = label.rsplit("@ ").next().unwrap_or("?");
     let feature = feature.split(['=', '(']).next().unwrap_or(feature).trim();
     format!("{kind} @ {feature}")
@@ -154,7 +167,12 @@ fn record(t: &mut Tally, run: &Run, dump: Option<&Path>) {
     let (case, v) = match run {
         Run::Panicked(case, msg) => {
             t.panics += 1;
-            eprintln!("PANIC {} seed {:#x} ({}): {msg}", case.family.name(), case.seed, case.label);
+            eprintln!(
+                "PANIC {} seed {:#x} ({}): {msg}",
+                case.family.name(),
+                case.seed,
+                case.label
+            );
             return;
         }
         Run::Judged(case, v) => (case, v),
@@ -165,7 +183,8 @@ fn record(t: &mut Tally, run: &Run, dump: Option<&Path>) {
     t.undecided += v.undecided as u64;
     t.degenerate += u64::from(v.degenerate);
     if v.degenerate && t.degenerate_examples.len() < 3 {
-        t.degenerate_examples.push(format!("{:#x} {:?}: {}", case.seed, v.answer, case.label));
+        t.degenerate_examples
+            .push(format!("{:#x} {:?}: {}", case.seed, v.answer, case.label));
     }
     match v.answer {
         Answer::Complete => {}
@@ -183,10 +202,16 @@ fn record(t: &mut Tally, run: &Run, dump: Option<&Path>) {
     kinds.dedup();
     for f in kinds {
         *t.faults.entry(f).or_default() += 1;
-        *t.by_label.entry(f).or_default().entry(construction(&case.label)).or_default() += 1;
+        *t.by_label
+            .entry(f)
+            .or_default()
+            .entry(construction(&case.label))
+            .or_default() += 1;
         let name = format!("{}-{}-{:016x}", case.family.name(), f.name(), case.seed);
         let path = dump.map(|d| d.join(format!("{name}.json")));
-        let shown = path.as_ref().map_or("PATCH.json".to_string(), |p| p.display().to_string());
+        let shown = path
+            .as_ref()
+            .map_or("PATCH.json".to_string(), |p| p.display().to_string());
         let text = adversary::report(case, v, &shown);
         if let (Some(d), Some(p)) = (dump, &path) {
             let write = std::fs::write(p, case.patch_json()).and(std::fs::write(d.join(format!("{name}.txt")), &text));
@@ -231,14 +256,14 @@ fn run_family(args: &Args, family: Family) -> (Tally, Duration) {
 
 fn print_summary(rows: &[(Family, Tally, Duration)]) {
     println!(
-        "\n{:<9} {:>6} {:>6} {:>6} {:>6} {:>6} | {:>5} {:>6} {:>7} {:>5} {:>5} {:>4} {:>6} {:>5} {:>5} | {:>6} {:>6} {:>4} {:>5} | {:>8} {:>9}",
-        "family", "cases", "true", "edge", "cert", "undec", "miss", "miss-t", "phantom", "multi", "t-box", "dup", "domain", "zero", "panic",
+        "\n{:<9} {:>6} {:>6} {:>6} {:>6} {:>6} | {:>5} {:>6} {:>7} {:>5} {:>7} {:>5} {:>4} {:>6} {:>5} {:>5} | {:>6} {:>6} {:>4} {:>5} | {:>8} {:>9}",
+        "family", "cases", "true", "edge", "cert", "undec", "miss", "miss-t", "phantom", "multi", "tangent", "t-box", "dup", "domain", "zero", "panic",
         "incomp", "unres", "err", "degen", "lib s", "slowest"
     );
     for (f, t, wall) in rows {
         let n = |k: Fault| t.faults.get(&k).copied().unwrap_or(0);
         println!(
-            "{:<9} {:>6} {:>6} {:>6} {:>6} {:>6} | {:>5} {:>6} {:>7} {:>5} {:>5} {:>4} {:>6} {:>5} {:>5} | {:>6} {:>6} {:>4} {:>5} | {:>8.2} {:>7.0}ms   (wall {:.1} s, slowest seed {:#x})",
+            "{:<9} {:>6} {:>6} {:>6} {:>6} {:>6} | {:>5} {:>6} {:>7} {:>5} {:>7} {:>5} {:>4} {:>6} {:>5} {:>5} | {:>6} {:>6} {:>4} {:>5} | {:>8.2} {:>7.0}ms   (wall {:.1} s, slowest seed {:#x})",
             f.name(),
             t.cases,
             t.roots,
@@ -249,6 +274,7 @@ fn print_summary(rows: &[(Family, Tally, Duration)]) {
             n(Fault::MissT),
             n(Fault::Phantom),
             n(Fault::Multiple),
+            n(Fault::Tangent),
             n(Fault::TBox),
             n(Fault::Duplicate),
             n(Fault::Domain),
@@ -303,7 +329,12 @@ fn main() {
             println!("{} degenerate truth (a curve of hits, not judged): {d}", f.name());
         }
         for (fault, labels) in &t.by_label {
-            println!("\n== {} / {}: {} case(s) by construction:", f.name(), fault.name(), t.faults[fault]);
+            println!(
+                "\n== {} / {}: {} case(s) by construction:",
+                f.name(),
+                fault.name(),
+                t.faults[fault]
+            );
             for (label, n) in labels {
                 println!("   {n:>5}  {label}");
             }
