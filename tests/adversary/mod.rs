@@ -759,7 +759,7 @@ fn bspline_basis(k: &[Q], p: usize, span: usize, x: &Q) -> Vec<Q> {
 
 /// The span `[k_a, k_{a+1})` (of positive length) holding `x`, clamped to the domain.
 fn span_of(k: &[Q], p: usize, ncp: usize, x: &Q) -> usize {
-    (p..ncp).filter(|&a| k[a] < k[a + 1] && &k[a] <= x).last().unwrap_or(p)
+    (p..ncp).rfind(|&a| k[a] < k[a + 1] && &k[a] <= x).unwrap_or(p)
 }
 
 /// The Greville abscissae `(k_{i+1} + … + k_{i+p}) / p`.
@@ -900,9 +900,9 @@ impl Surface {
         match &self.kind {
             Kind::Tensor(m, n) => {
                 let (bu, bv) = (bernstein(*m, u), bernstein(*n, v));
-                for i in 0..=*m {
-                    for j in 0..=*n {
-                        add(i * (n + 1) + j, &bu[i] * &bv[j]);
+                for (i, bi) in bu.iter().enumerate() {
+                    for (j, bj) in bv.iter().enumerate() {
+                        add(i * (n + 1) + j, bi * bj);
                     }
                 }
             }
