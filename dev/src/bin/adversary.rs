@@ -242,9 +242,17 @@ fn run_family(args: &Args, family: Family) -> (Tally, Duration) {
                 };
                 let run = run_one(family, case_seed(args.seed, family, k));
                 if let (true, Run::Judged(c, v)) = (args.list, &run) {
+                    let big = c.origin.iter().fold(0.0f64, |m, x| m.max(x.abs()));
                     println!(
-                        "{:#018x} {:?} true {} (edge {}) cert {} undec {}  {}",
-                        c.seed, v.answer, v.roots, v.near_feature, v.certified, v.undecided, c.label
+                        "{:#018x} {:?} true {} (edge {}) cert {} undec {} {:.1}ms |o| {big:.0e}  {}",
+                        c.seed,
+                        v.answer,
+                        v.roots,
+                        v.near_feature,
+                        v.certified,
+                        v.undecided,
+                        v.time.as_secs_f64() * 1e3,
+                        c.label
                     );
                 }
                 record(&mut tally.lock().unwrap(), &run, args.dump.as_deref());
