@@ -903,7 +903,7 @@ proptest! {
         judge_adversary(adversary::Family::Bspline, seed)?;
     }
 
-    // FAILS on the current library (rootclip e5ad3ed), so ignored until the
+    // FAILS on the current library (main at 87ca309), so ignored until the
     // library is fixed (run it with `cargo test --release --test ray_props --
     // --ignored adversary_nurbs`): seed 0x958d520f7d09dc7d
     // (= 10776359709843250301), a NURBS of bidegree (3, 2) with creases at
