@@ -12,7 +12,7 @@
 //! ```
 //!
 //! Options: `--seed S` (default 1), `--cases N` per family (default 2000),
-//! `--family tensor|rational|triangle|bspline|all` (default all), `--dump DIR`,
+//! `--family tensor|rational|triangle|bspline|nurbs|all` (default all), `--dump DIR`,
 //! `--threads T` (default 1), `--case-seed X` (one case, its full report),
 //! `--list` (one line per case: seed, answer, true hits, reported hits, label).
 
