@@ -11,12 +11,17 @@
 //! * a tensor patch solved through the square route agrees with its two
 //!   triangular halves solved one by one;
 //! * rays that miss the control net's bounding box report no hit;
-//! * degenerate and bad input give typed answers, never "no hits".
+//! * degenerate and bad input give typed answers, never "no hits";
+//! * the adversary ([`adversary`]): grazing rays at edges, corners, knot
+//!   lines and creases of height-field patches, every answer judged by an
+//!   exact-arithmetic referee (no silent miss, no certified phantom).
+
+mod adversary;
 
 use glam::DVec3;
 use proptest::collection::vec;
 use proptest::prelude::*;
-use proptest::test_runner::Config;
+use proptest::test_runner::{Config, RngSeed, TestCaseError};
 use rootclip::ray::{
     classify, intersect, Claim, Degeneracy, Hit, Patch, PatchSpec, Query, Ray, RayOptions, RayOutcome, TensorPatch,
     TriPatch,
@@ -840,5 +845,80 @@ fn flat_patches_at_the_rounding_floor_are_settled_exactly() {
                 }
             }
         }
+    }
+}
+
+// ---------------------------------------------------------------------------
+// The adversary: grazing rays judged in exact arithmetic
+// ---------------------------------------------------------------------------
+
+/// Fixed seeds (the cases are the same on every run and machine), no
+/// shrinking (a seed's neighbours are unrelated cases): a failure prints the
+/// case's seed; `cargo run --release -p rootclip-dev --bin adversary --
+/// --family F --case-seed S` replays it with a reproduction.
+fn adversary_cfg(cases: u32, seed: u64) -> Config {
+    Config {
+        cases,
+        failure_persistence: None,
+        max_shrink_iters: 0,
+        rng_seed: RngSeed::Fixed(seed),
+        ..Config::default()
+    }
+}
+
+fn judge_adversary(family: adversary::Family, seed: u64) -> Result<(), TestCaseError> {
+    let case = adversary::generate(family, seed);
+    let verdict = adversary::judge(&case);
+    prop_assert!(
+        !verdict.fails(),
+        "{}\npatch: {}",
+        adversary::report(&case, &verdict, "PATCH.json"),
+        case.patch_json()
+    );
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(adversary_cfg(64, 0xad5e_0001))]
+
+    #[test]
+    fn adversary_tensor(seed in any::<u64>()) {
+        judge_adversary(adversary::Family::Tensor, seed)?;
+    }
+
+    #[test]
+    fn adversary_rational(seed in any::<u64>()) {
+        judge_adversary(adversary::Family::Rational, seed)?;
+    }
+
+    #[test]
+    fn adversary_triangle(seed in any::<u64>()) {
+        judge_adversary(adversary::Family::Triangle, seed)?;
+    }
+
+    // The certified crease touch of `adversary_nurbs` (below) occurs in about
+    // 0.5% of B-spline cases (the dev tool finds it), none of these 64.
+    #[test]
+    fn adversary_bspline(seed in any::<u64>()) {
+        judge_adversary(adversary::Family::Bspline, seed)?;
+    }
+
+    // FAILS on the current library (main at 87ca309), so ignored until the
+    // library is fixed (run it with `cargo test --release --test ray_props --
+    // --ignored adversary_nurbs`): seed 0x958d520f7d09dc7d
+    // (= 10776359709843250301), a NURBS of bidegree (3, 2) with creases at
+    // u = 3.25 and v = 4 and a horizontal ray along the crease line v = 4 at
+    // exactly the height of the knot corner (3.25, 4), where z(u, 4) has a
+    // kink with one-sided slopes of opposite signs: the ray touches the
+    // surface there without crossing it, and the hit is reported Certified
+    // ("a transversal one"): fault `tangent`. The library's path:
+    // bspline::settle_on_edge keeps an exact root on a knot line for the piece
+    // below the line only, certified, and merge_knot_line_duplicates skips the
+    // piecewise Krawczyk proof (which fails at a touch) for a single report.
+    // The minimal case: adversary::tests::crease_touch_is_not_certified.
+    #[test]
+    #[ignore = "fails on the current library: a certified crease touch (see the comment)"]
+    fn adversary_nurbs(seed in any::<u64>()) {
+        judge_adversary(adversary::Family::Nurbs, seed)?;
     }
 }
