@@ -326,17 +326,18 @@ impl TensorPatch {
         self.exact
     }
 
-    /// Widens every homogeneous coordinate's enclosure by `err` on each side
-    /// (the weight's too when the patch is rational): the patch then stands
-    /// for every net within `err` of its points, e.g. the exact Bézier pieces
-    /// of a B-spline whose knot insertion ran in `f64` with that error bound.
-    pub(crate) fn widen(&mut self, err: f64) -> Result<()> {
+    /// Widens the enclosure of each homogeneous coordinate `(w x, w y, w z,
+    /// w)` by `err[c]` on each side (the weight's only when the patch is
+    /// rational): the patch then stands for every net within those bounds of
+    /// its points, e.g. the exact Bézier pieces of a B-spline whose knot
+    /// insertion ran in `f64` with those error bounds.
+    pub(crate) fn widen(&mut self, err: [f64; 4]) -> Result<()> {
         self.exact = false;
         let rational = self.weights.is_some();
         for row in &mut self.ivnet {
             for (c, x) in row.iter_mut().enumerate() {
                 if c < 3 || rational {
-                    *x = Iv::new(down(x.lo - err), up(x.hi + err));
+                    *x = Iv::new(down(x.lo - err[c]), up(x.hi + err[c]));
                 }
             }
         }

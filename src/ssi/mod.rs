@@ -409,7 +409,7 @@ fn triangle_as_tensor(p: &TriPatch) -> Result<TensorPatch> {
     // Binomials below 2⁵³ are exact; each weight carries ≤ 4 roundings, each
     // term 1 more, the sum n + 1, the division and the patch's own products
     // 3: (2n + 16)·2⁻⁵³ of the largest coordinate bounds it all.
-    t.widen((2 * n + 16) as f64 * f64::EPSILON * 0.5 * big * 2.0)?;
+    t.widen([(2 * n + 16) as f64 * f64::EPSILON * 0.5 * big * 2.0; 4])?;
     Ok(t)
 }
 

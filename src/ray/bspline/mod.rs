@@ -150,7 +150,9 @@ pub(crate) fn intersect_bspline(surface: &BsplineSurface, ray: &Ray, opts: &RayO
 /// A settled hit's box is cut to the piece (past its edge the surface is
 /// another piece, which may hold a hit of its own within the box). A root
 /// exactly on an interior knot line is a root of both neighbouring pieces;
-/// it is kept by the piece below the line only.
+/// it is kept by the piece below the line only, and left to the piecewise
+/// proof of [`merge`] (at a C⁰ crease a ray may touch the surface there
+/// without crossing it, which no single piece can tell).
 fn settle_on_edge(surface: &BsplineSurface, piece: &BezierPiece, ray: &Ray, h: Hit, range: [f64; 2]) -> Option<Hit> {
     use crate::solve::settle::{Edge, Settled, Shape};
     use crate::solve::Box2;
@@ -168,14 +170,25 @@ fn settle_on_edge(surface: &BsplineSurface, piece: &BezierPiece, ray: &Ray, h: H
     match super::settle::settle_all(&systems, bx) {
         Settled::Inside => {
             let on = systems[0].root_edges(bx);
-            let below_line = (on.contains(&Edge::U0) && piece.u[0] > surface.breaks_u[0])
-                || (on.contains(&Edge::V0) && piece.v[0] > surface.breaks_v[0]);
+            let (bu, bv) = (&surface.breaks_u, &surface.breaks_v);
+            let below_line =
+                (on.contains(&Edge::U0) && piece.u[0] > bu[0]) || (on.contains(&Edge::V0) && piece.v[0] > bv[0]);
             if below_line {
                 return None;
             }
+            // Exactly on an interior knot line (or corner) the root is a zero
+            // of this piece's polynomial, a simple one, but the surface there
+            // is two pieces: at a crease the ray may touch it without crossing.
+            // Only the piecewise proof of the merge step certifies it.
+            let on_line = (on.contains(&Edge::U1) && piece.u[1] < bu[bu.len() - 1])
+                || (on.contains(&Edge::V1) && piece.v[1] < bv[bv.len() - 1]);
             let clamp = |x: [f64; 2]| [x[0].max(0.0), x[1].min(1.0)];
             Some(Hit {
-                status: HitStatus::Certified,
+                status: if on_line {
+                    HitStatus::Undecided(crate::solve::UndecidedReason::Boundary)
+                } else {
+                    HitStatus::Certified
+                },
                 bx: HitBox {
                     u: clamp(h.bx.u),
                     v: clamp(h.bx.v),

@@ -138,31 +138,20 @@ impl BsplineSurface {
         // fl((1 − α̃)a + α̃ b) with α̃ = fl((x − t_i)/(t_{i+p} − t_i)), |α̃ − α| ≤ 3u
         // (u = 2⁻⁵³): its error against the exact (1 − α)A + αB is at most the
         // previous error plus |α̃ − α||b − a| + 4u(|a| + |b|) ≤ 14u·M, with M the
-        // largest homogeneous coordinate (convex combinations never exceed
-        // it). A point passes through at most one step per insertion, and
-        // the homogeneous products and the pieces' (h/w)·w round trip add a
-        // few u·M more: so every piece's exact net lies within
-        // 16u·M·(K + 4) of the computed one, K = insertions, and the pieces
-        // are widened by that much (`TensorPatch::widen`) — their
-        // certificates then hold for the exact surface.
-        let hom_max = points
-            .iter()
-            .enumerate()
-            .map(|(k, pt)| {
-                let w = weights.as_deref().map_or(1.0, |w| w[k]);
-                (pt.abs() * w.abs()).max_element().max(w.abs())
-            })
-            .fold(0.0f64, f64::max);
+        // largest magnitude of that coordinate in the net (convex combinations
+        // never exceed it; each coordinate is combined on its own). A point
+        // passes through at most one step per insertion, and the homogeneous
+        // products and the pieces' (h/w)·w round trip add a few u·M more: so
+        // every piece's exact net lies within 16u·M_c·(K + 4) of the computed
+        // one in coordinate c, K = insertions, and the pieces are widened by
+        // that much (`TensorPatch::widen`) — their certificates then hold for
+        // the exact surface. A polynomial surface is refined about the centre
+        // c of its net's bounding box (translation commutes with the convex
+        // combinations), so M_c is half its extent rather than its distance
+        // from the origin; translating there and back adds u·|P_c| at most.
         let insertions = p * breaks_u.len() + q * breaks_v.len();
-        let err = 16.0 * f64::EPSILON / 2.0 * hom_max * (insertions + 4) as f64;
-        let grid = Grid {
-            p,
-            q,
-            knots_u: &knots_u,
-            knots_v: &knots_v,
-            nv,
-            err,
-        };
+        let bound = |m: f64| 16.0 * f64::EPSILON / 2.0 * m * (insertions + 4) as f64;
+        let max_abs = |f: &dyn Fn(usize) -> f64| (0..points.len()).map(|k| f(k).abs()).fold(0.0f64, f64::max);
         let pieces = if rational {
             let w = weights.as_deref().unwrap_or(&[]);
             let hom: Vec<[f64; 4]> = points
@@ -170,10 +159,44 @@ impl BsplineSurface {
                 .zip(w)
                 .map(|(p, &w)| [w * p.x, w * p.y, w * p.z, w])
                 .collect();
+            let err: [f64; 4] = std::array::from_fn(|c| bound(max_abs(&|k| hom[k][c])));
+            let grid = Grid {
+                p,
+                q,
+                knots_u: &knots_u,
+                knots_v: &knots_v,
+                nv,
+                err,
+            };
             grid.pieces(hom, |h: &[f64; 4]| (DVec3::new(h[0], h[1], h[2]) / h[3], Some(h[3])))?
         } else {
-            let cart: Vec<[f64; 3]> = points.iter().map(|p| p.to_array()).collect();
-            grid.pieces(cart, |c: &[f64; 3]| (DVec3::from_array(*c), None))?
+            let (lo, hi) = points.iter().fold(
+                (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+                |(l, h), x| (l.min(*x), h.max(*x)),
+            );
+            let centre = (0.5 * lo + 0.5 * hi).to_array();
+            let cart: Vec<[f64; 3]> = points
+                .iter()
+                .map(|p| std::array::from_fn(|c| p[c] - centre[c]))
+                .collect();
+            let err: [f64; 4] = std::array::from_fn(|c| {
+                if c == 3 {
+                    0.0
+                } else {
+                    bound(max_abs(&|k| cart[k][c])) + f64::EPSILON * max_abs(&|k| points[k][c])
+                }
+            });
+            let grid = Grid {
+                p,
+                q,
+                knots_u: &knots_u,
+                knots_v: &knots_v,
+                nv,
+                err,
+            };
+            grid.pieces(cart, |c: &[f64; 3]| {
+                (DVec3::new(c[0] + centre[0], c[1] + centre[1], c[2] + centre[2]), None)
+            })?
         };
         Ok(Self {
             degree,
@@ -359,8 +382,9 @@ struct Grid<'a> {
     knots_u: &'a [f64],
     knots_v: &'a [f64],
     nv: usize,
-    /// Bound on the f64 knot insertion's error per homogeneous coordinate.
-    err: f64,
+    /// Bounds on the f64 knot insertion's error per homogeneous coordinate
+    /// `(w x, w y, w z, w)`.
+    err: [f64; 4],
 }
 
 impl Grid<'_> {
@@ -406,7 +430,7 @@ impl BezierPiece {
         weights: Option<Vec<f64>>,
         u: [f64; 2],
         v: [f64; 2],
-        err: f64,
+        err: [f64; 4],
     ) -> Result<Self> {
         let (lo, hi) = pts.iter().fold(
             (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
