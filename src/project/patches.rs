@@ -114,16 +114,18 @@ pub(super) fn clamp_square([u, v]: [f64; 2]) -> [f64; 2] {
     [u.clamp(0.0, 1.0), v.clamp(0.0, 1.0)]
 }
 
+/// The point moved into the closed triangle, `u + v ≤ 1` in exact
+/// arithmetic (checked as an interval sum's upper bound: a float sum that
+/// rounds to 1 may be above it).
 fn clamp_triangle([u, v]: [f64; 2]) -> [f64; 2] {
-    let (u, v) = (u.max(0.0), v.max(0.0));
-    let s = u + v;
-    if s <= 1.0 {
-        [u, v]
-    } else {
-        // Onto the hypotenuse, rounded so that u + v ≤ 1 holds in floats.
-        let u2 = u / s;
-        [u2, (1.0 - u2).max(0.0)]
+    let (u, v) = (u.clamp(0.0, 1.0), v.clamp(0.0, 1.0));
+    if (point(u) + point(v)).sup() <= 1.0 {
+        return [u, v];
     }
+    // Onto the hypotenuse: u scaled down, then v = 1 − u rounded down.
+    let s = u + v;
+    let u2 = if s > 1.0 { (u / s).min(1.0) } else { u };
+    [u2, (point(1.0) - point(u2)).inf().max(0.0)]
 }
 
 /// Tightens the lower bounds of the candidates that might hold the minimum
@@ -378,5 +380,26 @@ fn upper_over<P: NetBb<Interval>>(net: &Net<P>, p: [f64; 3], bx: Box2) -> f64 {
         f64::INFINITY
     } else {
         d.sup()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_rational::BigRational;
+
+    /// `0.1 + 0.9` rounds to 1 in floats but exceeds it exactly: moved onto
+    /// the hypotenuse so that `u + v ≤ 1` holds exactly.
+    #[test]
+    fn triangle_points_are_inside_exactly() {
+        let q = |x: f64| BigRational::from_float(x).unwrap();
+        let one = BigRational::from_integer(1.into());
+        assert_eq!(0.1 + 0.9, 1.0);
+        assert!(q(0.1) + q(0.9) > one);
+        for p in [[0.1, 0.9], [0.7, 0.3], [1.5, 0.25], [-0.5, 2.0], [1e-300, 1.0]] {
+            let [u, v] = clamp_triangle(p);
+            assert!(u >= 0.0 && v >= 0.0 && q(u) + q(v) <= one, "{p:?} -> ({u}, {v})");
+        }
+        assert_eq!(clamp_triangle([0.25, 0.5]), [0.25, 0.5]);
     }
 }
