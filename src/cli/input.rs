@@ -17,3 +17,13 @@ pub(super) fn read_input(path: &str) -> Result<String> {
         std::fs::read_to_string(path).map_err(io)
     }
 }
+
+/// A `--timeout`-like option in seconds as a duration; an error for a
+/// negative, NaN or too large number.
+pub(super) fn duration(flag: &str, seconds: f64) -> Result<std::time::Duration> {
+    std::time::Duration::try_from_secs_f64(seconds).map_err(|_| {
+        Error::InvalidOption(format!(
+            "{flag} must be a non-negative number of seconds, got {seconds}"
+        ))
+    })
+}

@@ -49,6 +49,12 @@ pub(super) struct RayArgs {
     /// How tensor patches are solved: natively on boxes, or as two triangles.
     #[arg(long, value_enum, default_value = "rect")]
     route: SquareRoute,
+    /// Wall-clock budget per ray in seconds (e.g. 0.01): past it the ray ends incomplete with the hits found.
+    #[arg(long)]
+    timeout: Option<f64>,
+    /// Box budget per solve (default 20000; a transversal ray needs a few dozen).
+    #[arg(long)]
+    max_boxes: Option<usize>,
     /// Print JSON instead of text.
     #[arg(long)]
     json: bool,
@@ -80,10 +86,16 @@ pub(super) fn run(args: &RayArgs) -> Result<Answer> {
     } else {
         Query::All
     };
-    let opts = RayOptions::default()
+    let mut opts = RayOptions::default()
         .with_query(query)
         .with_route(args.route)
         .with_t_range(args.t_min, args.t_max.unwrap_or(f64::INFINITY));
+    if let Some(t) = args.timeout {
+        opts = opts.with_timeout(super::input::duration("--timeout", t)?);
+    }
+    if let Some(n) = args.max_boxes {
+        opts = opts.with_max_boxes(n);
+    }
     opts.validate()?;
     let bar = indicatif::ProgressBar::new(rays.len() as u64);
     if rays.len() < 1000 {

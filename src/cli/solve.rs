@@ -72,9 +72,7 @@ pub(super) fn run(args: &SolveArgs) -> Result<Answer> {
         .with_square_route(args.square_route)
         .with_triangle_route(args.triangle_route);
     let opts = match args.timeout {
-        Some(s) => opts.with_timeout(std::time::Duration::try_from_secs_f64(s).map_err(|_| {
-            Error::InvalidOption(format!("--timeout must be a non-negative number of seconds, got {s}"))
-        })?),
+        Some(s) => opts.with_timeout(super::input::duration("--timeout", s)?),
         None => opts,
     };
     let t0 = std::time::Instant::now();

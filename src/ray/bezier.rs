@@ -7,21 +7,54 @@ use super::patch::{eval_interval, Bb, BezierRef, Net};
 use super::planes::{reduce, Planes};
 use super::query::{Ray, RayOptions};
 use super::regions::{finish, region_hit, sort_by_t};
+use super::settle;
 use crate::error::{Error, Result};
 use crate::poly::{TensorBezier, TriBezier};
 use crate::scalar::{interval, point};
 use crate::solve::{solve_square, solve_triangle, Solution, SquareRoute};
 use inari::Interval;
 
-/// The hits of `ray` with one Bézier patch ([`super::intersect`]'s contract):
-/// a tensor patch on a box route first, retried through the triangles when
-/// the box solve runs out of budget.
+/// Boxes (or tri-boxes) a transversal ray may use before the exact test
+/// for a ray along the surface: it needs a few dozen.
+const FIRST_BUDGET: usize = 2_000;
+
+/// The hits of `ray` with one Bézier patch ([`super::intersect`]'s contract).
+/// First with a budget sized for a transversal ray; a ray that exhausts it
+/// is tested exactly for running along the surface ([`settle::runs_along`]:
+/// its plane equations share a factor), which is answered at once as
+/// [`Degeneracy::AlongSurface`]; otherwise it is solved again with the whole
+/// budget (all within the options' deadline).
 pub(crate) fn intersect_bezier(b: BezierRef, ray: &Ray, opts: &RayOptions) -> Result<RayOutcome> {
+    if opts.solve.max_boxes > FIRST_BUDGET {
+        let mut short = opts.clone();
+        short.solve.max_boxes = FIRST_BUDGET;
+        let out = routes(b, ray, &short)?;
+        let RayOutcome::Degenerate(Degeneracy::Unresolved(h)) = &out else {
+            return Ok(out);
+        };
+        let late = opts.solve.deadline.is_some_and(|d| std::time::Instant::now() >= d);
+        if h.complete || late {
+            return Ok(out);
+        }
+        if settle::runs_along(b, ray) {
+            return Ok(RayOutcome::Degenerate(Degeneracy::AlongSurface(RayHits {
+                complete: false,
+                hits: h.hits.clone(),
+            })));
+        }
+    }
+    routes(b, ray, opts)
+}
+
+/// A tensor patch on a box route first, retried through the triangles when
+/// the box solve runs out of budget; a triangular patch on its route.
+fn routes(b: BezierRef, ray: &Ray, opts: &RayOptions) -> Result<RayOutcome> {
     if let (BezierRef::Tensor(p), SquareRoute::Rect | SquareRoute::RectFatLine | SquareRoute::RectHybrid) =
         (b, opts.route)
     {
         let out = boxes::intersect_rect(p, ray, opts)?;
-        if !matches!(out, RayOutcome::Degenerate(Degeneracy::Unresolved(ref h)) if !h.complete) {
+        let late = opts.solve.deadline.is_some_and(|d| std::time::Instant::now() >= d);
+        if late || !matches!(out, RayOutcome::Degenerate(Degeneracy::Unresolved(ref h)) if !h.complete) {
             return Ok(out);
         }
         // Out of budget: retry through the triangles (fat curves separate

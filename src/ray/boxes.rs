@@ -230,7 +230,7 @@ pub(super) fn intersect_rect(p: &TensorPatch, ray: &Ray, opts: &RayOptions) -> R
             SquareRoute::RectHybrid => RectClip::Hybrid,
             _ => RectClip::Bezier,
         },
-        deadline: None,
+        deadline: opts.solve.deadline,
         key_max: None,
     };
     let sol = match solve_rect_iv(problem, &ropts) {

@@ -129,18 +129,24 @@ pub enum Degeneracy {
     /// contains 0): the ray lies in the plane of the patch, or in a plane
     /// holding the whole control net.
     ZeroEquation,
-    /// The solve exhausted its budget or ended in more undecided regions than
-    /// a transversal ray can have: most likely a curve of hits (the ray runs
-    /// along the surface). The hits found so far are kept.
+    /// The solve exhausted its budget or deadline, or ended in more
+    /// undecided regions than a transversal ray can have. The hits found so
+    /// far are kept.
     Unresolved(RayHits),
+    /// Proven: the ray runs along the surface — its two plane equations share
+    /// a factor (exact test), so its hits include a curve of the patch. The
+    /// hits found before the test are kept (`complete = false`).
+    AlongSurface(RayHits),
 }
 
 impl Degeneracy {
-    /// The stable machine-readable code: `"zero_equation"` or `"unresolved"`.
+    /// The stable machine-readable code: `"zero_equation"`, `"unresolved"`
+    /// or `"along_surface"`.
     pub fn code(&self) -> &'static str {
         match self {
             Degeneracy::ZeroEquation => "zero_equation",
             Degeneracy::Unresolved(_) => "unresolved",
+            Degeneracy::AlongSurface(_) => "along_surface",
         }
     }
 
@@ -151,7 +157,10 @@ impl Degeneracy {
                 "the ray lies in a plane containing the whole control net (a planar patch): an equation vanishes identically"
             }
             Degeneracy::Unresolved(_) => {
-                "solver budget exhausted or too many undecided regions: the ray probably runs along the surface"
+                "solver budget or deadline exhausted, or too many undecided regions: the ray may run along the surface"
+            }
+            Degeneracy::AlongSurface(_) => {
+                "the ray runs along the surface (proven: its plane equations share a factor): its hits include a curve"
             }
         }
     }
@@ -168,10 +177,13 @@ pub enum RayOutcome {
 
 impl RayOutcome {
     /// The hits listed: all of them for [`RayOutcome::Hits`], those found so
-    /// far for [`Degeneracy::Unresolved`], none for a zero equation.
+    /// far for [`Degeneracy::Unresolved`] and [`Degeneracy::AlongSurface`],
+    /// none for a zero equation.
     pub fn hits(&self) -> &[Hit] {
         match self {
-            RayOutcome::Hits(h) | RayOutcome::Degenerate(Degeneracy::Unresolved(h)) => &h.hits,
+            RayOutcome::Hits(h)
+            | RayOutcome::Degenerate(Degeneracy::Unresolved(h))
+            | RayOutcome::Degenerate(Degeneracy::AlongSurface(h)) => &h.hits,
             RayOutcome::Degenerate(Degeneracy::ZeroEquation) => &[],
         }
     }

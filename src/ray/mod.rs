@@ -105,6 +105,11 @@ use rayon::prelude::*;
 /// ```
 pub fn intersect(patch: &Patch, ray: &Ray, opts: &RayOptions) -> Result<RayOutcome> {
     opts.validate()?;
+    // One deadline for every solve this ray starts (routes, retries, pieces).
+    let opts = &RayOptions {
+        solve: opts.solve.started(),
+        ..opts.clone()
+    };
     let out = match patch {
         Patch::Triangle(p) => bezier::intersect_bezier(BezierRef::Tri(p), ray, opts),
         Patch::Tensor(p) => bezier::intersect_bezier(BezierRef::Tensor(p), ray, opts),
@@ -180,6 +185,9 @@ fn into_domain(patch: &Patch, out: RayOutcome) -> RayOutcome {
     match out {
         RayOutcome::Hits(h) => RayOutcome::Hits(keep(h)),
         RayOutcome::Degenerate(Degeneracy::Unresolved(h)) => RayOutcome::Degenerate(Degeneracy::Unresolved(keep(h))),
+        RayOutcome::Degenerate(Degeneracy::AlongSurface(h)) => {
+            RayOutcome::Degenerate(Degeneracy::AlongSurface(keep(h)))
+        }
         d @ RayOutcome::Degenerate(Degeneracy::ZeroEquation) => d,
     }
 }

@@ -129,6 +129,22 @@ impl RayOptions {
         self
     }
 
+    /// The same options with a wall-clock budget per ray: every solve the
+    /// ray starts (routes, retries, B-spline pieces) stops at one deadline,
+    /// and the ray then ends [`Degeneracy::Unresolved`](super::Degeneracy::Unresolved)
+    /// with `complete = false` and the hits found.
+    pub fn with_timeout(mut self, timeout: std::time::Duration) -> Self {
+        self.solve.timeout = Some(timeout);
+        self
+    }
+
+    /// The same options with another box budget per solve
+    /// ([`SolveOptions::max_boxes`]).
+    pub fn with_max_boxes(mut self, max_boxes: usize) -> Self {
+        self.solve.max_boxes = max_boxes;
+        self
+    }
+
     /// Checks the options: the solver's ([`SolveOptions::validate`]) and a
     /// `t` range that is not NaN and not empty ([`Error::InvalidOption`]).
     pub fn validate(&self) -> Result<()> {

@@ -29,20 +29,7 @@ type Q = BigRational;
 /// their floats. `check_hi`: the upper end needs a proof too (the lower end,
 /// when finite, is always settled, with the domain).
 pub(super) fn settle(b: BezierRef, ray: &Ray, bx: Box2, range: [f64; 2], check_hi: bool) -> Settled {
-    let (shape, points, weights) = match b {
-        BezierRef::Tri(p) => (Shape::Triangle(p.degree()), p.points(), p.weights()),
-        BezierRef::Tensor(p) if p.net_is_exact() => {
-            let (m, n) = p.degree();
-            (Shape::Tensor(m, n), p.points(), p.weights())
-        }
-        _ => return Settled::Undecided,
-    };
-    let hom = points
-        .iter()
-        .enumerate()
-        .map(|(idx, &p)| exact_hom(p, weights.map(|w| w[idx])))
-        .collect::<Option<Vec<_>>>();
-    match hom.and_then(|hom| systems_of_net(shape, &hom, ray, range, check_hi)) {
+    match exact_net(b).and_then(|(shape, hom)| systems_of_net(shape, &hom, ray, range, check_hi)) {
         Some(systems) => settle_all(&systems, bx),
         None => Settled::Undecided,
     }
@@ -112,9 +99,12 @@ pub(crate) fn exact_hom(p: DVec3, weight: Option<f64>) -> Option<[Q; 4]> {
     Some([&w * q(p.x)?, &w * q(p.y)?, &w * q(p.z)?, w])
 }
 
-/// The exact system of a homogeneous net `(w x, w y, w z, w)` (in `shape`'s
-/// storage order) and the ray (module docs), with the sign condition `bound`.
-fn system_of_net(shape: Shape, hom: &[[Q; 4]], ray: &Ray, bound: Bound) -> Option<ExactSystem> {
+/// The exact plane equations `f`, `g` and the numerator of `t`, `h`, of a
+/// homogeneous net `(w x, w y, w z, w)` and the ray (module docs): the
+/// coefficients `n·(wP − w o)` with `n = e_k × d` for the two axes `k` other
+/// than `d`'s largest component, and `n = d`. `None` if a value is not
+/// finite.
+pub(crate) fn exact_rows(hom: &[[Q; 4]], ray: &Ray) -> Option<[Vec<Q>; 3]> {
     let q = |x: f64| Q::from_float(x);
     let vec = |p: DVec3| -> Option<[Q; 3]> { Some([q(p.x)?, q(p.y)?, q(p.z)?]) };
     let (o, d) = (vec(ray.origin())?, vec(ray.dir())?);
@@ -136,7 +126,7 @@ fn system_of_net(shape: Shape, hom: &[[Q; 4]], ray: &Ray, bound: Bound) -> Optio
             &e[0] * &d[1] - &e[1] * &d[0],
         ]
     };
-    let normals = [normal((c + 1) % 3), normal((c + 2) % 3), d.clone()];
+    let normals = [normal((c + 1) % 3), normal((c + 2) % 3), d];
     // n·(wP − w o) for each row.
     let rows: Vec<Vec<Q>> = normals
         .iter()
@@ -146,9 +136,20 @@ fn system_of_net(shape: Shape, hom: &[[Q; 4]], ray: &Ray, bound: Bound) -> Optio
                 .collect()
         })
         .collect();
-    let [f, g, h]: [Vec<Q>; 3] = rows.try_into().ok()?;
+    rows.try_into().ok()
+}
+
+/// The exact system of a homogeneous net `(w x, w y, w z, w)` (in `shape`'s
+/// storage order) and the ray (module docs), with the sign condition `bound`.
+fn system_of_net(shape: Shape, hom: &[[Q; 4]], ray: &Ray, bound: Bound) -> Option<ExactSystem> {
+    let q = |x: f64| Q::from_float(x);
+    let [f, g, h] = exact_rows(hom, ray)?;
+    let d = ray.dir();
     // t = h / (W |d|²) with W > 0: t ≥ lo ⟺ h − lo |d|² W ≥ 0.
-    let d2 = d.iter().fold(Q::zero(), |acc, x| acc + x * x);
+    let d2 = [d.x, d.y, d.z]
+        .iter()
+        .map(|&x| q(x))
+        .try_fold(Q::zero(), |acc, x| Some(acc + x.as_ref()? * x.as_ref()?))?;
     let shifted = |end: f64, sign: i32| -> Option<Vec<Q>> {
         let k = q(end)? * &d2;
         Some(
@@ -165,4 +166,49 @@ fn system_of_net(shape: Shape, hom: &[[Q; 4]], ray: &Ray, bound: Bound) -> Optio
         Bound::Max(hi) => Some(shifted(hi, -1)?),
     };
     ExactSystem::new(shape, f, g, cond).ok()
+}
+
+/// The exact homogeneous net of a Bézier patch that is exactly its floats,
+/// with its shape; `None` for a B-spline piece (its net carries knot
+/// insertion error) or a value that is not finite.
+pub(crate) fn exact_net(b: BezierRef) -> Option<(Shape, Vec<[Q; 4]>)> {
+    let (shape, points, weights) = match b {
+        BezierRef::Tri(p) => (Shape::Triangle(p.degree()), p.points(), p.weights()),
+        BezierRef::Tensor(p) if p.net_is_exact() => {
+            let (m, n) = p.degree();
+            (Shape::Tensor(m, n), p.points(), p.weights())
+        }
+        _ => return None,
+    };
+    let hom = points
+        .iter()
+        .enumerate()
+        .map(|(idx, &p)| exact_hom(p, weights.map(|w| w[idx])))
+        .collect::<Option<Vec<_>>>()?;
+    Some((shape, hom))
+}
+
+/// Proven: the ray runs along the patch — its two exact plane equations
+/// share a non-constant factor (a curve of common zeros; exact test of
+/// [`has_common_factor`](crate::solve::degenerate::has_common_factor) on
+/// the exact reduction). `false` claims nothing (a B-spline piece, or no
+/// common factor).
+pub(crate) fn runs_along(b: BezierRef, ray: &Ray) -> bool {
+    use crate::poly::{Polynomial, TensorBezier, TriBezier};
+    let Some((shape, hom)) = exact_net(b) else {
+        return false;
+    };
+    let Some([f, g, _]) = exact_rows(&hom, ray) else {
+        return false;
+    };
+    let poly = |c: Vec<Q>| -> Option<Polynomial> {
+        match shape {
+            Shape::Tensor(m, n) => Some(Polynomial::from_square(&TensorBezier::on_unit_square(m, n, c).ok()?)),
+            Shape::Triangle(n) => Some(Polynomial::from_triangle(&TriBezier::new(n, c).ok()?)),
+        }
+    };
+    match (poly(f), poly(g)) {
+        (Some(f), Some(g)) => !f.is_zero() && !g.is_zero() && crate::solve::degenerate::has_common_factor(&f, &g),
+        _ => false,
+    }
 }

@@ -352,9 +352,8 @@ fn judge_catches_mutated_answers() {
 /// crease at `u = 1`, `z = 1/4` there), and the horizontal ray at `z = 1/4`
 /// along `x`: hits at `u = 1/3` and `5/3` cross the surface, the one at the
 /// crease only touches it and must not be certified (a transversal hit
-/// is promised). Fails on main at 87ca309, which certifies all three.
+/// is promised). main at 87ca309 certified all three.
 #[test]
-#[ignore = "fails on the current library: the touch at the crease is certified"]
 fn crease_touch_is_not_certified() {
     let zs = [0.0, 0.5, 0.25, 0.5, 0.0];
     let points = (0..5)

@@ -114,7 +114,7 @@ pub(crate) fn intersect_bspline(surface: &BsplineSurface, ray: &Ray, opts: &RayO
             RayOutcome::Degenerate(Degeneracy::ZeroEquation) => {
                 return Ok(RayOutcome::Degenerate(Degeneracy::ZeroEquation))
             }
-            RayOutcome::Degenerate(Degeneracy::Unresolved(h)) => {
+            RayOutcome::Degenerate(Degeneracy::Unresolved(h) | Degeneracy::AlongSurface(h)) => {
                 unresolved = true;
                 complete &= h.complete;
                 h.hits
