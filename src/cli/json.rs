@@ -39,6 +39,43 @@ pub(super) fn write_document<T: Serialize>(out: &mut impl Write, body: &T) -> io
     out.write_all(b"\n")
 }
 
+/// A batch item that failed: `{"error": {"code", "message", "line"}}` in the
+/// item's place (`code` is [`Error::code`](crate::Error::code); `line` the
+/// 1-based line of the input file the item came from).
+#[derive(Clone, Debug, Serialize)]
+#[allow(dead_code)] // (wired into the batch commands one by one)
+pub(super) struct ItemError {
+    pub(super) code: &'static str,
+    pub(super) message: String,
+    pub(super) line: usize,
+}
+
+#[allow(dead_code)]
+impl ItemError {
+    pub(super) fn new(e: &crate::Error, line: usize) -> Self {
+        Self {
+            code: e.code(),
+            message: e.to_string(),
+            line,
+        }
+    }
+
+    /// `item k (line L): message`, for text output.
+    pub(super) fn text(&self, what: &str, k: usize) -> String {
+        format!("{what} {k} (line {}): error: {}", self.line, self.message)
+    }
+}
+
+/// One batch item as printed: the library result's own JSON, or
+/// `{"error": …}` ([`ItemError`]).
+#[derive(Serialize)]
+#[serde(untagged)]
+#[allow(dead_code)]
+pub(super) enum Item<T: Serialize> {
+    Ok(T),
+    Err { error: ItemError },
+}
+
 /// A JSON array of `view(item)` for the items, each element made just
 /// before it is written: no `Vec` of the views is built.
 pub(super) struct LazySeq<'a, T, U> {

@@ -49,8 +49,10 @@ enum Command {
 }
 
 /// Runs the command line: parses the arguments, runs the command, prints its
-/// output (or one error line) and returns the exit code (0, or 2 for bad
-/// input or an unwritable standard output).
+/// output (or one error line) and returns the exit code: 0; 1 when some
+/// items of a batch failed (every item is printed, the failed ones with their
+/// errors); 2 for bad input or an unwritable standard output (nothing on
+/// standard output, one line on standard error).
 pub fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -88,8 +90,16 @@ pub fn main() -> ExitCode {
         Command::Solve(args) => solve::run(&args),
         Command::Ssi(args) => ssi::run(&args).map(Answer::text),
     };
+    let failed = answer.as_ref().map_or((0, 0), |a| a.failed);
     match answer.map(Answer::print) {
         // A closed pipe (`rootclip ... | head`) counts as written.
+        Ok(Ok(())) if failed.0 > 0 => {
+            eprintln!(
+                "rootclip: {} of {} items failed (each is listed with its error)",
+                failed.0, failed.1
+            );
+            ExitCode::from(1)
+        }
         Ok(Ok(())) => ExitCode::SUCCESS,
         Ok(Err(e)) => {
             eprintln!("rootclip: writing standard output: {e}");

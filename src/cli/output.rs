@@ -15,13 +15,28 @@ type Writer = Box<dyn FnOnce(&mut Out) -> io::Result<()>>;
 
 /// What a command prints. The command computes it in full before anything
 /// is written, so a failing command leaves standard output empty (one error
-/// line on stderr, exit 2); only the writing is left here.
-pub(super) struct Answer(Writer);
+/// line on stderr, exit 2); only the writing is left here. A batch whose
+/// items failed one by one (a bad ray, point or claim) prints every item,
+/// the failed ones as errors, and counts them in `failed` (exit 1).
+pub(super) struct Answer {
+    write: Writer,
+    /// Batch items that failed (each printed as its error), and the items.
+    pub(super) failed: (usize, usize),
+}
 
 impl Answer {
     /// The output `write` writes (ending it with a newline).
     pub(super) fn new(write: impl FnOnce(&mut Out) -> io::Result<()> + 'static) -> Self {
-        Self(Box::new(write))
+        Self {
+            write: Box::new(write),
+            failed: (0, 0),
+        }
+    }
+
+    /// The same answer, noting that `failed` of `items` batch items failed.
+    pub(super) fn with_failed(mut self, failed: usize, items: usize) -> Self {
+        self.failed = (failed, items);
+        self
     }
 
     /// `text` and a newline.
@@ -39,7 +54,7 @@ impl Answer {
     /// reader has what it wanted.
     pub(super) fn print(self) -> io::Result<()> {
         let mut out = BufWriter::with_capacity(1 << 16, io::stdout().lock());
-        match (self.0)(&mut out).and_then(|()| out.flush()) {
+        match (self.write)(&mut out).and_then(|()| out.flush()) {
             Err(e) if e.kind() == io::ErrorKind::BrokenPipe => Ok(()),
             done => done,
         }
