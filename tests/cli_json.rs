@@ -134,10 +134,42 @@ fn ray_json_and_errors() {
     // A missing file is an I/O error, not a shape error.
     let err = fails_cleanly(&["ray", "--patch", "/nonexistent/patch.json", "--rays", &rays], "");
     assert!(err.contains("cannot read /nonexistent/patch.json"), "{err}");
-    // A malformed ray line names its line.
-    let badrays = dir.file("badrays.txt", "0 0 1 0 0 -1\n0 0 1 0 0\n");
-    let err = fails_cleanly(&["ray", "--patch", &patch, "--rays", &badrays], "");
-    assert!(err.contains("line 2"), "{err}");
+    // A batch never aborts: a malformed line, a zero direction and a NaN
+    // each get their error (with the line) in their place, the good rays
+    // their answers, and the exit code is 1.
+    let badrays = dir.file(
+        "badrays.txt",
+        "0.25 0.5 1 0 0 -1\n0 0 1 0 0\n# comment\n0.25 0.5 1 0 0 0\n0.25 nan 1 0 0 -1\n0.1 0.1 1 0 0 -1\n",
+    );
+    let out = run(&["ray", "--patch", &patch, "--rays", &badrays, "--json"]);
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("3 of 5 items failed"), "{stderr}");
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let list = v["rays"].as_array().unwrap();
+    assert_eq!(list.len(), 5);
+    assert_eq!(list[0]["hits"][0]["status"], "certified");
+    assert_eq!(list[4]["hits"][0]["status"], "certified");
+    for (k, line, code) in [(1, 2, "format"), (2, 4, "degenerate"), (3, 5, "non_finite")] {
+        assert_eq!(list[k]["error"]["line"], line, "{}", list[k]);
+        assert_eq!(list[k]["error"]["code"], code, "{}", list[k]);
+    }
+    // Each ray's JSON is the library's serialization of its outcome.
+    let lib = rootclip::ray::intersect(
+        &rootclip::ray::Patch::from_spec(&serde_json::from_str(FLAT).unwrap()).unwrap(),
+        &rootclip::ray::Ray::new(
+            rootclip::glam::DVec3::new(0.25, 0.5, 1.0),
+            rootclip::glam::DVec3::new(0.0, 0.0, -1.0),
+        )
+        .unwrap(),
+        &rootclip::ray::RayOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(list[0], serde_json::to_value(&lib).unwrap());
+    let back: rootclip::ray::RayOutcome = serde_json::from_value(list[0].clone()).unwrap();
+    assert_eq!(back, lib);
+    let text = String::from_utf8(run(&["ray", "--patch", &patch, "--rays", &badrays]).stdout).unwrap();
+    assert!(text.contains("ray 1 (line 2): error: malformed input"), "{text}");
 }
 
 /// A reader that closes the pipe early (`rootclip ray … | head`) ends the
@@ -409,7 +441,12 @@ fn crosscheck_claims() {
     assert_eq!(r[1]["nearest_claimed"], Value::Null);
     assert_eq!(r[2]["nearest_claimed"], false);
     assert_eq!(r[2]["missed"].as_array().unwrap().len(), 1);
-    assert!((r[2]["missed"][0]["t"].as_f64().unwrap() - 2.0).abs() < 1e-12);
+    let k = r[2]["missed"][0].as_u64().unwrap() as usize;
+    assert!((r[2]["hits"][k]["t"].as_f64().unwrap() - 2.0).abs() < 1e-12);
+    // The confirmed claim names its hit; each ray is the library's Classification.
+    assert_eq!(r[0]["claims"][0]["hit"], 0);
+    let c: rootclip::ray::Classification = serde_json::from_value(r[0].clone()).unwrap();
+    assert_eq!(serde_json::to_value(&c).unwrap(), r[0]);
     let s = &v["summary"];
     assert_eq!(
         [
@@ -440,16 +477,32 @@ fn crosscheck_claims() {
         "",
     );
     assert_eq!(v["rays"][0]["claims"][2]["verdict"], "spurious");
+    // A malformed claim is listed with its line; the others are judged;
+    // exit 1.
     for (bad, line) in [
-        ("0 0.25 0.5\n", "line 1"),
-        ("0 0.25 0.5 1\n0 x 0.5 1\n", "line 2"),
-        ("0 0.25 NaN 1\n", "line 1"),
-        ("3 0.25 0.5 1\n", "line 1"),
-        ("-1 0.25 0.5 1\n", "line 1"),
+        ("0 0.25 0.5\n", 1),
+        ("0 0.25 0.5 1\n0 x 0.5 1\n", 2),
+        ("0 0.25 NaN 1\n", 1),
+        ("3 0.25 0.5 1\n", 1),
+        ("-1 0.25 0.5 1\n", 1),
     ] {
         let c = dir.file("bad.txt", bad);
-        let err = fails_cleanly(&["crosscheck", "--patch", &patch, "--rays", &rays, "--claims", &c], "");
-        assert!(err.contains(line), "{bad:?}: {err}");
+        let out = run(&[
+            "crosscheck",
+            "--patch",
+            &patch,
+            "--rays",
+            &rays,
+            "--claims",
+            &c,
+            "--json",
+        ]);
+        assert_eq!(out.status.code(), Some(1), "{bad:?}");
+        let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+        let errs = v["claim_errors"].as_array().unwrap();
+        assert_eq!(errs.len(), 1, "{bad:?}: {v}");
+        assert_eq!(errs[0]["line"], line, "{bad:?}: {v}");
+        assert_eq!(v["rays"].as_array().unwrap().len(), 3);
     }
     fails_cleanly(
         &[
@@ -531,5 +584,144 @@ fn heuristics_example_json_and_errors() {
         &["heuristics", "--example", "1", "--domain-rule", "bounce"],
     ] {
         fails_cleanly(bad, "");
+    }
+}
+
+/// The JSON shapes docs/cli.md shows are what the commands print: every key
+/// in a section's example block appears in the command's real output, and
+/// every key of the real output (outside `stats`, whose counters the
+/// example elides) appears in the block.
+#[test]
+fn documented_json_matches_the_output() {
+    let doc = std::fs::read_to_string(format!("{}/docs/cli.md", env!("CARGO_MANIFEST_DIR"))).unwrap();
+    // The first ```json block after "JSON:" in a section.
+    let block = |heading: &str| -> String {
+        let at = doc.find(heading).unwrap_or_else(|| panic!("no section {heading}"));
+        let at = at + doc[at..].find("\nJSON:").expect("a JSON paragraph");
+        let rest = &doc[at..];
+        let start = rest.find("```json").expect("a JSON block") + 7;
+        let end = rest[start..].find("```").unwrap();
+        rest[start..start + end].to_string()
+    };
+    let doc_keys = |text: &str| -> std::collections::BTreeSet<String> {
+        text.split('"')
+            .collect::<Vec<_>>()
+            .windows(2)
+            .filter(|w| w[1].trim_start().starts_with(':'))
+            .map(|w| w[0].to_string())
+            .filter(|k| k != "...")
+            .collect()
+    };
+    // Every key, and the keys outside `elided` objects (`stats`, whose
+    // counters the examples elide; crosscheck's `hits`, documented by
+    // reference to `rootclip ray`).
+    type Keys = std::collections::BTreeSet<String>;
+    fn real_keys(v: &Value, elided: &[&str], under: bool, all: &mut Keys, main: &mut Keys) {
+        match v {
+            Value::Object(m) => {
+                for (k, x) in m {
+                    all.insert(k.clone());
+                    if !under {
+                        main.insert(k.clone());
+                    }
+                    real_keys(x, elided, under || elided.contains(&k.as_str()), all, main);
+                }
+            }
+            Value::Array(a) => a.iter().for_each(|x| real_keys(x, elided, under, all, main)),
+            _ => {}
+        }
+    }
+    let dir = TempDir::new("doc_json");
+    let patch = dir.file("patch.json", FLAT);
+    let rays = dir.file(
+        "rays.txt",
+        "0.25 0.5 1 0 0 -1\n0.25 0.5 0 1 0 0\n0 0 1 0 0 0\n0.1 0.1 2 0 0 -1\n",
+    );
+    let claims = dir.file("claims.txt", "0 0.25 0.5 1\n3 0.2 0.2 2\n9 0 0 0\n");
+    let saddle = dir.file(
+        "saddle.json",
+        r#"{"type":"tensor","degree":[1,1],"points":[[0,0,1],[0,1,-1],[1,0,-1],[1,1,1]]}"#,
+    );
+    let cases: [(&str, Vec<&str>); 3] = [
+        (
+            "## `rootclip solve`",
+            vec![
+                "solve",
+                "--f",
+                "u^2 + v^2 - 1/4",
+                "--g",
+                "16*u*v - 1",
+                "--triangle-route",
+                "triangle",
+                "--json",
+            ],
+        ),
+        (
+            "## `rootclip ray`",
+            vec!["ray", "--patch", &patch, "--rays", &rays, "--json"],
+        ),
+        (
+            "## `rootclip crosscheck`",
+            vec![
+                "crosscheck",
+                "--patch",
+                &patch,
+                "--rays",
+                &rays,
+                "--claims",
+                &claims,
+                "--json",
+            ],
+        ),
+    ];
+    for (heading, args) in cases {
+        let out = run(&args);
+        let mut v: Value = serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{args:?}: {e}"));
+        if heading.contains("ray`") {
+            // Add a ray along the surface for `degenerate`, `hits_complete`.
+            let along = ok_json(
+                &[
+                    "ray", "--patch", &saddle, "--origin", "-1,0.5,0", "--dir", "1,0,0", "--json",
+                ],
+                "",
+            );
+            v["rays"].as_array_mut().unwrap().push(along["rays"][0].clone());
+        }
+        if heading.contains("solve`") {
+            // A cluster (a double root) and a leftover tri-box (a budget of 1).
+            let double = ok_json(&["solve", "--f", "(u-1/3)^2 + (v-1/3)^2", "--g", "u - v", "--json"], "");
+            let left = ok_json(
+                &[
+                    "solve",
+                    "--f",
+                    "u^2 + v^2 - 1/4",
+                    "--g",
+                    "16*u*v - 1",
+                    "--triangle-route",
+                    "triangle",
+                    "--max-boxes",
+                    "1",
+                    "--json",
+                ],
+                "",
+            );
+            v["clusters"] = double["clusters"].clone();
+            v["leftovers"] = left["leftovers"].clone();
+        }
+        let (mut all, mut main) = (Keys::new(), Keys::new());
+        let elided: &[&str] = if heading.contains("crosscheck") {
+            &["stats", "hits"]
+        } else {
+            &["stats"]
+        };
+        real_keys(&v, elided, false, &mut all, &mut main);
+        let documented = doc_keys(&block(heading));
+        let missing: Vec<_> = documented.difference(&all).collect();
+        let undocumented: Vec<_> = main.difference(&documented).collect();
+        assert!(missing.is_empty(), "{heading}: documented but not printed: {missing:?}");
+        assert!(
+            undocumented.is_empty(),
+            "{heading}: printed but not documented: {undocumented:?}"
+        );
     }
 }

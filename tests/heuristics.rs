@@ -515,7 +515,7 @@ fn experiment_verdicts_agree_with_classify_claim_by_claim() {
                 continue;
             };
             let c = classify(&ex.patch, &ex.ray, &[Claim { u: e.u, v: e.v, t: e.t }], REFEREE_TOL).unwrap();
-            let expected = match (c.claims[0].0, c.nearest_claimed) {
+            let expected = match (c.claims[0].verdict, c.nearest_claimed) {
                 (ClaimVerdict::Confirmed, Some(true)) => Verdict::Correct,
                 (ClaimVerdict::Confirmed, Some(false)) => Verdict::WrongHit,
                 (ClaimVerdict::Confirmed, None) | (ClaimVerdict::Undecided, _) => Verdict::Undecided,

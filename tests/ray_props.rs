@@ -268,18 +268,18 @@ proptest! {
         let c = classify(&patch, &ray, &claims, tol).unwrap();
         let planted_certified = c.hits.iter().any(|h| h.is_certified() && gap(h.bx.u, u0) <= 1e-12 && gap(h.bx.v, v0) <= 1e-12);
         if planted_certified {
-            prop_assert_eq!(c.claims[0].0, ClaimVerdict::Confirmed, "{:?}", c);
-            prop_assert_eq!(c.claims[1].0, ClaimVerdict::Duplicate, "{:?}", c);
+            prop_assert_eq!(c.claims[0].verdict, ClaimVerdict::Confirmed, "{:?}", c);
+            prop_assert_eq!(c.claims[1].verdict, ClaimVerdict::Duplicate, "{:?}", c);
         }
-        prop_assert_ne!(c.claims[2].0, ClaimVerdict::Confirmed, "{:?}", c);
+        prop_assert_ne!(c.claims[2].verdict, ClaimVerdict::Confirmed, "{:?}", c);
         let far_from_all = c.hits.iter().all(|h| gap(h.bx.u, far[0]) > 1e-6 || gap(h.bx.v, far[1]) > 1e-6);
         if far_from_all {
-            prop_assert!(matches!(c.claims[3].0, ClaimVerdict::Spurious | ClaimVerdict::Undecided), "{:?}", c);
+            prop_assert!(matches!(c.claims[3].verdict, ClaimVerdict::Spurious | ClaimVerdict::Undecided), "{:?}", c);
             if c.complete {
-                prop_assert_eq!(c.claims[3].0, ClaimVerdict::Spurious);
+                prop_assert_eq!(c.claims[3].verdict, ClaimVerdict::Spurious);
             }
         }
-        let taken: Vec<usize> = c.claims.iter().filter(|x| x.0 == ClaimVerdict::Confirmed).filter_map(|x| x.1).collect();
+        let taken: Vec<usize> = c.claims.iter().filter(|x| x.verdict == ClaimVerdict::Confirmed).filter_map(|x| x.hit).collect();
         for (k, h) in c.hits.iter().enumerate() {
             let listed = c.missed.contains(&k);
             prop_assert_eq!(listed, h.is_certified() && !taken.contains(&k), "{:?}", c);

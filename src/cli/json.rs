@@ -1,8 +1,6 @@
 //! The CLI's JSON: the library's serde derives inside a versioned envelope,
 //! plus the English text and legacy flags beside the machine-readable codes.
 
-use crate::ray::{Hit, RayOutcome};
-use crate::solve::{Cluster, Solution, UndecidedReason};
 use serde::{Serialize, Serializer};
 use std::io::{self, Write};
 
@@ -43,14 +41,12 @@ pub(super) fn write_document<T: Serialize>(out: &mut impl Write, body: &T) -> io
 /// item's place (`code` is [`Error::code`](crate::Error::code); `line` the
 /// 1-based line of the input file the item came from).
 #[derive(Clone, Debug, Serialize)]
-#[allow(dead_code)] // (wired into the batch commands one by one)
 pub(super) struct ItemError {
     pub(super) code: &'static str,
     pub(super) message: String,
     pub(super) line: usize,
 }
 
-#[allow(dead_code)]
 impl ItemError {
     pub(super) fn new(e: &crate::Error, line: usize) -> Self {
         Self {
@@ -70,7 +66,6 @@ impl ItemError {
 /// `{"error": …}` ([`ItemError`]).
 #[derive(Serialize)]
 #[serde(untagged)]
-#[allow(dead_code)]
 pub(super) enum Item<T: Serialize> {
     Ok(T),
     Err { error: ItemError },
@@ -86,119 +81,5 @@ pub(super) struct LazySeq<'a, T, U> {
 impl<T, U: Serialize> Serialize for LazySeq<'_, T, U> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         s.collect_seq(self.items.iter().map(self.view))
-    }
-}
-
-/// An undecided region with its reason's English text.
-#[derive(Serialize)]
-pub(super) struct ClusterJson<'a> {
-    #[serde(flatten)]
-    cluster: &'a Cluster,
-    reason_text: &'static str,
-}
-
-/// A solution as the CLI prints it: the derive's keys, roots with
-/// `"certified": true` (every listed root is), clusters with their text, and
-/// the counters with the run time.
-#[derive(Serialize)]
-pub(super) struct SolutionJson<'a> {
-    complete: bool,
-    roots: Vec<RootJson<'a>>,
-    clusters: Vec<ClusterJson<'a>>,
-    leftovers: &'a [crate::solve::Leftover],
-    stats: StatsJson<'a>,
-}
-
-#[derive(Serialize)]
-struct RootJson<'a> {
-    #[serde(flatten)]
-    root: &'a crate::solve::Root,
-    certified: bool,
-}
-
-#[derive(Serialize)]
-struct StatsJson<'a> {
-    #[serde(flatten)]
-    stats: &'a crate::solve::Stats,
-    seconds: f64,
-}
-
-impl<'a> SolutionJson<'a> {
-    pub(super) fn new(sol: &'a Solution, seconds: f64) -> Self {
-        Self {
-            complete: sol.complete,
-            roots: sol
-                .roots
-                .iter()
-                .map(|root| RootJson { root, certified: true })
-                .collect(),
-            clusters: sol
-                .clusters
-                .iter()
-                .map(|c| ClusterJson {
-                    cluster: c,
-                    reason_text: c.reason.describe(),
-                })
-                .collect(),
-            leftovers: &sol.leftovers,
-            stats: StatsJson {
-                stats: &sol.stats,
-                seconds,
-            },
-        }
-    }
-}
-
-/// A hit as the CLI prints it: the derive's keys (`status`, `reason`), the
-/// reason's text, and the flags of schema 0 (`certified`, `on_edge`,
-/// `t_straddles_zero`) derived from the status.
-#[derive(Serialize)]
-pub(super) struct HitJson<'a> {
-    #[serde(flatten)]
-    hit: &'a Hit,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    reason_text: Option<&'static str>,
-    certified: bool,
-    on_edge: bool,
-    t_straddles_zero: bool,
-}
-
-impl<'a> HitJson<'a> {
-    pub(super) fn new(hit: &'a Hit) -> Self {
-        let reason = hit.undecided_reason();
-        Self {
-            hit,
-            reason_text: reason.map(UndecidedReason::describe),
-            certified: hit.is_certified(),
-            on_edge: reason == Some(UndecidedReason::Boundary),
-            t_straddles_zero: reason == Some(UndecidedReason::RangeEnd),
-        }
-    }
-}
-
-/// One ray's answer: `complete`, the hits, and for a degenerate ray its
-/// reason (code and text).
-#[derive(Serialize)]
-pub(super) struct RayJson<'a> {
-    complete: bool,
-    hits: Vec<HitJson<'a>>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    degenerate: Option<&'static str>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    degenerate_code: Option<&'static str>,
-}
-
-impl<'a> RayJson<'a> {
-    pub(super) fn new(outcome: &'a RayOutcome, complete: bool, hits: Vec<&'a Hit>) -> Self {
-        let degeneracy = match outcome {
-            RayOutcome::Degenerate(d) => Some(d),
-            _ => None,
-        };
-        Self {
-            complete,
-            hits: hits.into_iter().map(HitJson::new).collect(),
-            degenerate: degeneracy.map(|d| d.describe()),
-            degenerate_code: degeneracy.map(|d| d.code()),
-        }
     }
 }

@@ -34,7 +34,6 @@ impl Answer {
     }
 
     /// The same answer, noting that `failed` of `items` batch items failed.
-    #[allow(dead_code)] // (wired into the batch commands one by one)
     pub(super) fn with_failed(mut self, failed: usize, items: usize) -> Self {
         self.failed = (failed, items);
         self

@@ -3,15 +3,16 @@
 //! PATCH.json is a [`PatchSpec`] (unknown keys are errors); B-spline hits are
 //! reported in knot parameters. RAYS.txt: one ray per line,
 //! `ox oy oz dx dy dz` (blank lines and `#` comments are skipped). JSON out:
-//! `{"schema_version": 1, "rays": [{"complete": …, "hits": […]}]}`, one entry
-//! per ray in input order; a degenerate ray has `"complete": false` and a
-//! `"degenerate"` reason with its `"degenerate_code"`.
+//! `{"schema_version": 1, "rays": [RayOutcome, …]}`, one entry per ray in
+//! input order, each the library's serialization of [`RayOutcome`]; a ray
+//! line that cannot be read, or a ray that fails, is `{"error": {"code",
+//! "message", "line"}}` in its place, and the exit code is then 1.
 
 use super::input::read_input;
-use super::json::{write_document, LazySeq, RayJson};
+use super::json::{write_document, Item, ItemError, LazySeq};
 use super::output::Answer;
 use crate::error::{Error, Result};
-use crate::ray::{intersect, Hit, Patch, PatchSpec, Query, Ray, RayOptions, RayOutcome};
+use crate::ray::{intersect, Patch, PatchSpec, Query, Ray, RayOptions, RayOutcome};
 use crate::solve::SquareRoute;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -70,9 +71,9 @@ pub(super) fn run(args: &RayArgs) -> Result<Answer> {
         ));
     }
     let patch = parse_patch(&read_input(&args.patch)?)?;
-    let rays = match (&args.origin, &args.dir, &args.rays) {
-        (Some(o), Some(d), None) => vec![Ray::new(parse_vec3("--origin", o)?, parse_vec3("--dir", d)?)?],
-        (None, None, Some(path)) => parse_rays(&read_input(path)?)?,
+    let rays: Vec<Line<Ray>> = match (&args.origin, &args.dir, &args.rays) {
+        (Some(o), Some(d), None) => vec![(1, Ok(Ray::new(parse_vec3("--origin", o)?, parse_vec3("--dir", d)?)?))],
+        (None, None, Some(path)) => parse_rays(&read_input(path)?),
         _ => {
             return Err(Error::InvalidOption(
                 "give either --origin and --dir, or --rays (not both)".into(),
@@ -101,34 +102,45 @@ pub(super) fn run(args: &RayArgs) -> Result<Answer> {
     if rays.len() < 1000 {
         bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
     }
-    let outcomes = rays
+    let outcomes: Vec<std::result::Result<RayOutcome, ItemError>> = rays
         .par_iter()
-        .map(|r| {
-            let out = intersect(&patch, r, &opts);
+        .map(|(line, r)| {
+            let out = r
+                .as_ref()
+                .map_err(|e| e.clone())
+                .and_then(|r| intersect(&patch, r, &opts))
+                .map_err(|e| ItemError::new(&e, *line));
             bar.inc(1);
             out
         })
-        .collect::<Result<Vec<_>>>()?;
+        .collect();
     bar.finish_and_clear();
-    let nearest = args.nearest;
+    let failed = outcomes.iter().filter(|o| o.is_err()).count();
+    let items = outcomes.len();
     Ok(if args.json {
-        Answer::new(move |out| write_json(out, &outcomes, nearest))
+        Answer::new(move |out| write_json(out, &outcomes))
     } else {
-        Answer::new(move |out| write_text(out, &outcomes, nearest))
-    })
+        Answer::new(move |out| write_text(out, &outcomes))
+    }
+    .with_failed(failed, items))
 }
+
+/// An input line's number (1-based) and what was read from it.
+pub(super) type Line<T> = (usize, Result<T>);
 
 /// `{"schema_version": 1, "rays": [...]}`, each ray's JSON made as it is
 /// written.
-fn write_json(out: &mut impl Write, outcomes: &[RayOutcome], nearest: bool) -> io::Result<()> {
+fn write_json(out: &mut impl Write, outcomes: &[std::result::Result<RayOutcome, ItemError>]) -> io::Result<()> {
     #[derive(Serialize)]
     struct Rays<'a> {
-        rays: LazySeq<'a, RayOutcome, RayJson<'a>>,
+        rays: LazySeq<'a, std::result::Result<RayOutcome, ItemError>, Item<&'a RayOutcome>>,
     }
-    let view = |o| {
-        let (complete, hits) = selected(o, nearest);
-        RayJson::new(o, complete, hits)
-    };
+    fn view(o: &std::result::Result<RayOutcome, ItemError>) -> Item<&RayOutcome> {
+        match o {
+            Ok(o) => Item::Ok(o),
+            Err(e) => Item::Err { error: e.clone() },
+        }
+    }
     let rays = LazySeq {
         items: outcomes,
         view: &view,
@@ -157,62 +169,59 @@ fn parse_vec3(what: &str, s: &str) -> Result<DVec3> {
     Ok(DVec3::new(c[0], c[1], c[2]))
 }
 
-/// Parses RAYS.txt: `ox oy oz dx dy dz` per line.
-pub(super) fn parse_rays(text: &str) -> Result<Vec<Ray>> {
+/// Parses RAYS.txt: `ox oy oz dx dy dz` per line, each line's ray or its
+/// error (blank lines and `#` comments skipped).
+pub(super) fn parse_rays(text: &str) -> Vec<Line<Ray>> {
     let mut rays = Vec::new();
     for (k, line) in text.lines().enumerate() {
         let line = line.trim();
         if line.is_empty() || line.starts_with('#') {
             continue;
         }
-        let c: Vec<f64> = line
-            .split_whitespace()
-            .map(|x| {
-                x.parse::<f64>()
-                    .map_err(|_| Error::Format(format!("RAYS line {}: {x:?} is not a number", k + 1)))
-            })
-            .collect::<Result<_>>()?;
-        if c.len() != 6 {
-            return Err(Error::Format(format!(
-                "RAYS line {}: need 6 numbers, got {}",
-                k + 1,
-                c.len()
-            )));
-        }
-        let ray = Ray::new(DVec3::new(c[0], c[1], c[2]), DVec3::new(c[3], c[4], c[5]))
-            .map_err(|e| Error::Format(format!("RAYS line {}: {e}", k + 1)))?;
-        rays.push(ray);
+        let parse = || -> Result<Ray> {
+            let c: Vec<f64> = line
+                .split_whitespace()
+                .map(|x| {
+                    x.parse::<f64>()
+                        .map_err(|_| Error::Format(format!("RAYS line {}: {x:?} is not a number", k + 1)))
+                })
+                .collect::<Result<_>>()?;
+            if c.len() != 6 {
+                return Err(Error::Format(format!(
+                    "RAYS line {}: need 6 numbers, got {}",
+                    k + 1,
+                    c.len()
+                )));
+            }
+            Ray::new(DVec3::new(c[0], c[1], c[2]), DVec3::new(c[3], c[4], c[5]))
+        };
+        rays.push((k + 1, parse()));
     }
-    Ok(rays)
+    rays
 }
 
-fn selected(o: &RayOutcome, nearest: bool) -> (bool, Vec<&Hit>) {
-    match o {
-        RayOutcome::Hits(h) if nearest => (h.complete, h.nearest()),
-        RayOutcome::Hits(h) => (h.complete, h.hits.iter().collect()),
-        _ => (false, o.hits().iter().collect()),
-    }
-}
-
-/// `ray k: …` and a line per hit for each ray, the rays' texts joined by
-/// newlines, and a final newline.
-fn write_text(out: &mut impl Write, outcomes: &[RayOutcome], nearest: bool) -> io::Result<()> {
+/// `ray k: …` and a line per hit for each ray (a failed ray: its error),
+/// the rays' texts joined by newlines, and a final newline.
+fn write_text(out: &mut impl Write, outcomes: &[std::result::Result<RayOutcome, ItemError>]) -> io::Result<()> {
     for (k, o) in outcomes.iter().enumerate() {
         if k > 0 {
             out.write_all(b"\n")?;
         }
-        write_outcome(out, k, o, nearest)?;
+        match o {
+            Ok(o) => write_outcome(out, k, o)?,
+            Err(e) => write!(out, "{}", e.text("ray", k))?,
+        }
     }
     out.write_all(b"\n")
 }
 
-fn write_outcome(out: &mut impl Write, k: usize, o: &RayOutcome, nearest: bool) -> io::Result<()> {
-    let (complete, hits) = selected(o, nearest);
+fn write_outcome(out: &mut impl Write, k: usize, o: &RayOutcome) -> io::Result<()> {
+    let hits = o.hits();
     write!(
         out,
         "ray {k}: {} hit(s){}",
         hits.len(),
-        if complete { ", complete" } else { "" }
+        if o.is_complete() { ", complete" } else { "" }
     )?;
     if let Some(reason) = o.degenerate_reason() {
         write!(out, ", DEGENERATE: {reason}")?;

@@ -3,7 +3,7 @@
 
 use super::bernstein::{parse_bb, Bb};
 use super::input::read_input;
-use super::json::{write_document, SolutionJson};
+use super::json::write_document;
 use super::output::Answer;
 use crate::error::{Error, Result};
 use crate::poly::parse_polynomial;
@@ -75,7 +75,6 @@ pub(super) fn run(args: &SolveArgs) -> Result<Answer> {
         Some(s) => opts.with_timeout(super::input::duration("--timeout", s)?),
         None => opts,
     };
-    let t0 = std::time::Instant::now();
     let sol = match (&args.f, &args.g, &args.f_bb, &args.g_bb) {
         (Some(f), Some(g), None, None) => {
             let f = parse_polynomial(f).map_err(|e| prefix("--f", e))?;
@@ -102,10 +101,10 @@ pub(super) fn run(args: &SolveArgs) -> Result<Answer> {
         }
         _ => return Err(Error::InvalidOption("give --f and --g, or --f-bb and --g-bb".into())),
     };
-    let secs = t0.elapsed().as_secs_f64();
     Ok(if args.json {
-        Answer::new(move |out| write_document(out, &SolutionJson::new(&sol, secs)))
+        Answer::new(move |out| write_document(out, &sol))
     } else {
+        let secs = sol.stats.seconds;
         Answer::text(solution_text(&sol, secs))
     })
 }

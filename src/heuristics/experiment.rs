@@ -192,7 +192,8 @@ pub fn judge(patch: &Patch, ray: &Ray, outcomes: &[Outcome], opts: &RayOptions) 
             verdicts.push((Verdict::Failed, Some(failure.code())));
             continue;
         };
-        let (cv, hit) = *claim.next().expect("one verdict per claim");
+        let r = claim.next().expect("one verdict per claim");
+        let (cv, hit) = (r.verdict, r.hit);
         found.push(match cv {
             ClaimVerdict::Confirmed | ClaimVerdict::Duplicate => hit,
             _ => None,

@@ -39,9 +39,15 @@ pub struct HitBox {
 
 /// One intersection of the ray with the patch (or an undecided region that
 /// may hold some).
+///
+/// JSON (feature `serde`): the fields, `"status"` and `"reason"` as for
+/// [`HitStatus`], and, derived from the status for readers that want them
+/// spelled out, `"reason_text"` (the reason in English), `"certified"`,
+/// `"on_edge"` (`reason = "boundary"`) and `"t_straddles_zero"` (`reason =
+/// "range_end"`); they are ignored when read back.
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize), serde(from = "super::json::HitIn"))]
 pub struct Hit {
     /// Midpoint of the `t` box (the hit is `o + t·d`, `d` as given).
     pub t: f64,
@@ -55,10 +61,8 @@ pub struct Hit {
     /// undefined).
     pub normal: DVec3,
     /// What is proven; see [`HitStatus`].
-    #[cfg_attr(feature = "serde", serde(flatten))]
     pub status: HitStatus,
     /// The boxes; every hit the entry stands for lies in them.
-    #[cfg_attr(feature = "serde", serde(rename = "box"))]
     pub bx: HitBox,
 }
 
@@ -95,7 +99,6 @@ impl Hit {
 /// The hits of one ray, sorted by `t`.
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RayHits {
     /// `true`: every hit in the `t` range lies in one of `hits` (certified or
     /// not). `false`: a budget stopped the solve (only inside
@@ -167,7 +170,19 @@ impl Degeneracy {
 }
 
 /// The answer for one ray.
+///
+/// JSON (feature `serde`; what `rootclip ray --json` prints per ray):
+/// `{"complete": bool, "hits": [Hit, …]}`, and for a degenerate ray
+/// `"degenerate_code"` ([`Degeneracy::code`]), `"degenerate"` (its
+/// [description](Degeneracy::describe)) and, for `unresolved` and
+/// `along_surface`, `"hits_complete"` (the inner [`RayHits::complete`]).
+/// `"complete"` is [`RayOutcome::is_complete`].
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(into = "super::json::OutcomeRepr", try_from = "super::json::OutcomeRepr")
+)]
 pub enum RayOutcome {
     /// Every hit in the `t` range; see [`RayHits`].
     Hits(RayHits),

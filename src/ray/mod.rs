@@ -50,6 +50,8 @@ mod bezier;
 mod boxes;
 pub(crate) mod bspline;
 mod hit;
+#[cfg(feature = "serde")]
+mod json;
 pub(crate) mod patch;
 mod planes;
 mod query;
@@ -65,7 +67,7 @@ pub use bspline::{BezierPiece, BsplineSurface};
 pub use hit::{Degeneracy, Hit, HitBox, HitStatus, RayHits, RayOutcome};
 pub use patch::{TensorPatch, TriPatch};
 pub use query::{Query, Ray, RayOptions};
-pub use referee::{classify, classify_with, Claim, Classification};
+pub use referee::{classify, classify_with, Claim, ClaimResult, Classification};
 pub use spec::PatchSpec;
 pub use surface::Patch;
 

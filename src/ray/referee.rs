@@ -33,13 +33,33 @@ pub struct Claim {
     pub t: f64,
 }
 
+/// The verdict on one claim.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct ClaimResult {
+    /// The claim as given.
+    #[cfg_attr(feature = "serde", serde(flatten))]
+    pub claim: Claim,
+    /// What the referee says of it.
+    pub verdict: ClaimVerdict,
+    /// The index (into [`Classification::hits`]) of the hit that confirmed
+    /// it or that it duplicates.
+    #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "Option::is_none"))]
+    pub hit: Option<usize>,
+}
+
 /// The referee's answer for one ray.
+///
+/// JSON (feature `serde`; what `rootclip crosscheck --json` prints per ray):
+/// the fields; `missed` as indices into `hits`; `nearest_claimed` `null`
+/// when the nearest hit is not proven.
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Classification {
-    /// One verdict per claim, in the order given, with the index (into
-    /// `hits`) of the hit that confirmed it or that it duplicates.
-    pub claims: Vec<(ClaimVerdict, Option<usize>)>,
+    /// One result per claim, in the order given.
+    pub claims: Vec<ClaimResult>,
     /// The indices (into `hits`) of certified hits no claim confirmed.
     pub missed: Vec<usize>,
     /// Whether the nearest hit was claimed: `Some(true)` when it is proven
@@ -72,9 +92,9 @@ pub struct Classification {
 ///     Claim { u: 0.25, v: 0.5, t: 1.001 }, // the right point, the wrong t
 /// ];
 /// let c = classify(&tri.into(), &ray, &claims, 1e-8)?;
-/// assert_eq!(c.claims[0].0, ClaimVerdict::Confirmed);
-/// assert_eq!(c.claims[1].0, ClaimVerdict::Spurious);
-/// assert_eq!(c.claims[2].0, ClaimVerdict::Spurious);
+/// assert_eq!(c.claims[0].verdict, ClaimVerdict::Confirmed);
+/// assert_eq!(c.claims[1].verdict, ClaimVerdict::Spurious);
+/// assert_eq!(c.claims[2].verdict, ClaimVerdict::Spurious);
 /// assert_eq!(c.nearest_claimed, Some(true));
 /// # Ok::<(), rootclip::Error>(())
 /// ```
@@ -127,7 +147,11 @@ pub fn classify_with(
     };
     debug_assert!(certified.iter().all(|&k| confirmed_of(k) != missed_hits.contains(&k)));
     Ok(Classification {
-        claims: verdicts,
+        claims: claims
+            .iter()
+            .zip(verdicts)
+            .map(|(&claim, (verdict, hit))| ClaimResult { claim, verdict, hit })
+            .collect(),
         missed: missed_hits,
         nearest_claimed,
         complete,

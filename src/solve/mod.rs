@@ -28,6 +28,8 @@ pub(crate) mod driver;
 mod envelope;
 mod exact_input;
 pub(crate) mod fatcurve;
+#[cfg(feature = "serde")]
+mod json;
 pub(crate) mod krawczyk;
 pub(crate) mod linalg;
 pub(crate) mod method;
@@ -134,6 +136,19 @@ fn scaler(coeffs: &[BigRational]) -> impl Fn(&BigRational) -> BigRational {
 /// # Ok::<(), rootclip::Error>(())
 /// ```
 pub fn solve(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions) -> Result<Solution> {
+    let t0 = std::time::Instant::now();
+    timed(t0, solve_exact(f, g, domain, opts))
+}
+
+/// The solve's wall-clock time in its [`Stats::seconds`].
+fn timed(t0: std::time::Instant, sol: Result<Solution>) -> Result<Solution> {
+    sol.map(|mut s| {
+        s.stats.seconds = t0.elapsed().as_secs_f64();
+        s
+    })
+}
+
+fn solve_exact(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions) -> Result<Solution> {
     opts.validate()?;
     let opts = &opts.started();
     not_zero(f.is_zero(), g.is_zero())?;
@@ -271,6 +286,11 @@ impl sealed::Sealed for TensorBezier<Interval> {
 /// # Ok::<(), rootclip::Error>(())
 /// ```
 pub fn solve_bb<P: BbPolynomial>(f: &P, g: &P, opts: &SolveOptions) -> Result<Solution> {
+    let t0 = std::time::Instant::now();
+    timed(t0, solve_bb_timed(f, g, opts))
+}
+
+fn solve_bb_timed<P: BbPolynomial>(f: &P, g: &P, opts: &SolveOptions) -> Result<Solution> {
     opts.validate()?;
     let opts = &opts.started();
     match (f.input()?, g.input()?) {

@@ -64,9 +64,16 @@ impl Box2 {
 
 /// A certified root: its box holds exactly one root of the system, a simple
 /// one (see the [`Solution`] contract).
+///
+/// JSON (feature `serde`): the fields and `"certified": true` (every root
+/// is; spelled out for readers of mixed lists), ignored when read.
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(into = "super::json::RootRepr", from = "super::json::RootRepr")
+)]
 pub struct Root {
     /// Midpoint of the box.
     pub u: f64,
@@ -80,8 +87,8 @@ pub struct Root {
     /// the box's width of it (inside it, for exact input: see [`Solution`]).
     pub on_boundary: bool,
     /// Diameters of the tri-boxes holding this root, by level (index 0 is the
-    /// whole domain), along the deepest path that reached it (not serialized).
-    #[cfg_attr(feature = "serde", serde(skip))]
+    /// whole domain), along the deepest path that reached it (empty for the
+    /// box solvers).
     pub diameters: Vec<f64>,
 }
 
@@ -147,18 +154,24 @@ impl UndecidedReason {
 }
 
 /// An undecided region: it may hold any number of roots (including none).
+///
+/// JSON (feature `serde`): the fields and `"reason_text"`, the reason in
+/// English ([`UndecidedReason::describe`]), ignored when read.
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(into = "super::json::ClusterRepr", from = "super::json::ClusterRepr")
+)]
 pub struct Cluster {
     /// A closed box covering the region.
     #[cfg_attr(feature = "serde", serde(rename = "box"))]
     pub bx: Box2,
     /// Why it is undecided.
     pub reason: UndecidedReason,
-    /// Diameters by level along the path to one of its tri-boxes (not
-    /// serialized).
-    #[cfg_attr(feature = "serde", serde(skip))]
+    /// Diameters by level along the path to one of its tri-boxes (empty
+    /// for the box solvers).
     pub diameters: Vec<f64>,
 }
 
@@ -178,12 +191,11 @@ pub struct Leftover {
 }
 
 /// Counters of a solve (summed over the triangles or boxes it ran on).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[non_exhaustive]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize), serde(default))]
 pub struct Stats {
     /// Tri-boxes (or boxes) processed.
-    #[cfg_attr(feature = "serde", serde(rename = "tri_boxes"))]
     pub boxes: usize,
     /// Clips that shrank a region.
     pub clips: usize,
@@ -218,6 +230,9 @@ pub struct Stats {
     pub outside_domain: usize,
     /// Deepest level reached.
     pub max_level: usize,
+    /// Wall-clock seconds the solve took ([`solve`](crate::solve::solve)
+    /// and [`solve_bb`](crate::solve::solve_bb); 0 where not measured).
+    pub seconds: f64,
 }
 
 /// The result of a solve.
