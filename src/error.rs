@@ -36,9 +36,21 @@ pub enum Error {
     NonFinite(String),
     /// Shapes do not fit (wrong number of coefficients, degrees, empty input).
     Shape(String),
-    /// The input is degenerate: an identically zero equation, a common factor
-    /// (a curve of roots), a zero ray direction, a collapsed domain.
+    /// The input is degenerate: a zero ray direction, a weight that is not
+    /// positive, a collapsed domain.
     Degenerate(String),
+    /// An equation of the system is identically zero: every point of the
+    /// other equation's curve is a root. Names the equation.
+    ZeroEquation(String),
+    /// The two equations share a non-constant factor: its zeros are a curve
+    /// of roots. `factor` is the exact factor (the gcd over ℚ, leading
+    /// coefficient 1) as an expression [`parse_polynomial`](crate::parse_polynomial)
+    /// reads back; [`solve_reduced`](crate::solve::solve_reduced) solves what
+    /// remains.
+    CommonFactor {
+        /// The common factor, exactly.
+        factor: String,
+    },
     /// A size limit protects against runaway work (e.g. degree too large).
     TooLarge(String),
 }
@@ -46,7 +58,7 @@ pub enum Error {
 impl Error {
     /// A stable machine-readable name of the variant: `"io"`,
     /// `"invalid_option"`, `"parse"`, `"format"`, `"non_finite"`, `"shape"`,
-    /// `"degenerate"` or `"too_large"`.
+    /// `"degenerate"`, `"zero_equation"`, `"common_factor"` or `"too_large"`.
     ///
     /// ```
     /// let e = rootclip::poly::parse_polynomial("u^-1").unwrap_err();
@@ -61,6 +73,8 @@ impl Error {
             Error::NonFinite(_) => "non_finite",
             Error::Shape(_) => "shape",
             Error::Degenerate(_) => "degenerate",
+            Error::ZeroEquation(_) => "zero_equation",
+            Error::CommonFactor { .. } => "common_factor",
             Error::TooLarge(_) => "too_large",
         }
     }
@@ -76,6 +90,11 @@ impl fmt::Display for Error {
             Error::NonFinite(s) => write!(f, "non-finite input: {s}"),
             Error::Shape(s) => write!(f, "shape error: {s}"),
             Error::Degenerate(s) => write!(f, "degenerate input: {s}"),
+            Error::ZeroEquation(s) => write!(f, "degenerate input: {s}"),
+            Error::CommonFactor { factor } => write!(
+                f,
+                "degenerate input: f and g share the factor {factor}: the system has a curve of roots"
+            ),
             Error::TooLarge(s) => write!(f, "too large: {s}"),
         }
     }

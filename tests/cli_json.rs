@@ -363,7 +363,17 @@ fn solve_from_bb_files() {
         r#"{"domain":"square","degree":[0,0],"coefficients":[{"i":0,"j":0,"value":"1"}]}"#,
     );
     fails_cleanly(&["solve", "--f-bb", &square, "--g-bb", &g], "");
-    assert!(fails_cleanly(&["solve", "--f-bb", &f, "--g-bb", &f], "").contains("common factor"));
+    // A common factor: the factor, and the roots off its curve (f/f = 1: none).
+    let v = ok_json(&["solve", "--f-bb", &f, "--g-bb", &f, "--json"], "");
+    assert!(v["common_factor"].as_str().is_some_and(|h| h != "1"), "{v}");
+    assert_eq!(v["roots"].as_array().unwrap().len(), 0);
+    let v = ok_json(
+        &["solve", "--f", "(u-v)*(u+v-1)", "--g", "(u-v)*(2*u-1/3)", "--json"],
+        "",
+    );
+    assert_eq!(v["common_factor"], "-u + v");
+    assert_eq!(v["roots"].as_array().unwrap().len(), 1);
+    assert_eq!(v["roots"][0]["certified"], true);
     fails_cleanly(&["solve", "--f-bb", &f], "");
     fails_cleanly(&["solve", "--f", "u", "--f-bb", &f, "--g", "v"], "");
 }

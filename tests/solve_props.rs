@@ -451,7 +451,7 @@ fn planted_property(fl: &[Line], gl: &[Line], dom: Domain, o: &SolveOptions) -> 
         let (f, g) = (product(fl), product(gl));
         let r = solve(&f, &g, dom, o);
         prop_assert!(
-            matches!(r, Err(Error::Degenerate(_))),
+            matches!(r, Err(Error::CommonFactor { .. })),
             "shared line not rejected: f = {}, g = {}: {:?}",
             f,
             g,
@@ -775,7 +775,7 @@ fn dense_property(
     let res = solve(f, g, dom, o);
     if proportional(f, g) {
         prop_assert!(
-            matches!(res, Err(Error::Degenerate(_))),
+            matches!(res, Err(Error::CommonFactor { .. })),
             "proportional f, g accepted\n{}",
             ctx
         );
@@ -1310,8 +1310,9 @@ proptest! {
         dense_property(&f, &g, p.as_ref(), dom, &default_opts())?;
     }
 
-    /// 7: common factors (a line or a conic times random cofactors) are
-    /// rejected as degenerate, never solved and never a panic.
+    /// 7: common factors (a line or a conic times random cofactors) are a
+    /// typed error naming a factor `h` divides, never solved as isolated
+    /// roots and never a panic; `solve_reduced` then solves what remains.
     #[test]
     fn common_factors_rejected(
         (h, p, r) in (1u32..=2, 0u32..=2, 0u32..=2)
@@ -1320,9 +1321,20 @@ proptest! {
     ) {
         prop_assume!(h.total_degree() >= 1);
         let (f, g) = (mul(&h, &p), mul(&h, &r));
+        if f.is_zero() || g.is_zero() {
+            let r = solve(&f, &g, dom, &default_opts());
+            prop_assert!(matches!(r, Err(Error::ZeroEquation(_))), "{:?}", r.map(|s| s.roots.len()));
+            return Ok(());
+        }
         let res = solve(&f, &g, dom, &default_opts());
         let shown = res.map(|s| s.roots.len());
-        prop_assert!(matches!(shown, Err(Error::Degenerate(_))), "f = {}, g = {}: {:?}", f, g, shown);
+        let Err(Error::CommonFactor { factor }) = &shown else {
+            return Err(TestCaseError::fail(format!("f = {f}, g = {g}: {shown:?}")));
+        };
+        let factor = rootclip::parse_polynomial(factor).expect("the factor parses");
+        prop_assert!(factor.total_degree() >= h.total_degree(), "{} vs {}", factor, h);
+        let reduced = rootclip::solve::solve_reduced(&f, &g, dom, &default_opts());
+        prop_assert!(reduced.is_ok(), "f = {}, g = {}: {:?}", f, g, reduced);
     }
 }
 
@@ -1517,17 +1529,48 @@ fn degenerate_inputs() {
     let p = |s: &str| rootclip::parse_polynomial(s).expect("parses");
     let d = Domain::Triangle;
     let o = SolveOptions::default();
-    let degenerate = |f: &str, g: &str, dom: Domain| {
+    let zero = |f: &str, g: &str, dom: Domain| {
         let r = solve(&p(f), &p(g), dom, &o);
-        assert!(matches!(r, Err(Error::Degenerate(_))), "{f}; {g}: {r:?}");
+        assert!(matches!(r, Err(Error::ZeroEquation(_))), "{f}; {g}: {r:?}");
+    };
+    let common = |f: &str, g: &str, dom: Domain, factor: &str| {
+        let r = solve(&p(f), &p(g), dom, &o);
+        assert!(
+            matches!(&r, Err(Error::CommonFactor { factor: h }) if p(h) == p(factor)),
+            "{f}; {g}: {r:?}"
+        );
+        assert_eq!(r.unwrap_err().code(), "common_factor");
     };
     for dom in [Domain::Triangle, Domain::Square] {
-        degenerate("0", "u - v", dom);
-        degenerate("u^2 + v - 1/3", "0", dom);
-        degenerate("0", "0", dom);
-        degenerate("(u-v)*(u+1/3)", "(u-v)*(v-1/5)", dom);
-        degenerate("(u^2+v^2-1/4)*(u+2)", "(u^2+v^2-1/4)*v", dom);
-        degenerate("u - 1/3", "3*u - 1", dom);
+        zero("0", "u - v", dom);
+        zero("u^2 + v - 1/3", "0", dom);
+        zero("0", "0", dom);
+        common("(u-v)*(u+1/3)", "(u-v)*(v-1/5)", dom, "v - u");
+        common("(u^2+v^2-1/4)*(u+2)", "(u^2+v^2-1/4)*v", dom, "v^2 + u^2 - 1/4");
+        common("u - 1/3", "3*u - 1", dom, "u - 1/3");
+    }
+    // The isolated root off the common line is found and certified; the
+    // line is the reported factor.
+    for (f, g, root, factor) in [
+        ("(u-v)*(u+v-1)", "(u-v)*(2*u-1/3)", (1.0 / 6.0, 5.0 / 6.0), "v - u"),
+        ("(u-v)*(2*u-1/3)", "(u-v)*(u+v-1)", (1.0 / 6.0, 5.0 / 6.0), "v - u"),
+        (
+            "(u^2+v^2-1/4)*(u-1/5)",
+            "(u^2+v^2-1/4)*(v-3/5)",
+            (0.2, 0.6),
+            "u^2 + v^2 - 1/4",
+        ),
+    ] {
+        for dom in [Domain::Triangle, Domain::Square] {
+            let r = rootclip::solve::solve_reduced(&p(f), &p(g), dom, &o).unwrap();
+            assert_eq!(p(&r.common_factor), p(factor), "{f}; {g}");
+            assert!(
+                r.solution.complete && r.solution.roots.len() == 1,
+                "{f}; {g}: {:?}",
+                r.solution
+            );
+            assert!(r.solution.roots[0].bx.contains(root.0, root.1), "{f}; {g}");
+        }
     }
     for eps in [0.0, -1e-6, f64::NAN, f64::INFINITY] {
         let r = solve(&p("u - v"), &p("u + v - 1/2"), d, &opts(Method::Hc, eps));

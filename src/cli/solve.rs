@@ -6,8 +6,10 @@ use super::input::read_input;
 use super::json::write_document;
 use super::output::Answer;
 use crate::error::{Error, Result};
-use crate::poly::parse_polynomial;
-use crate::solve::{solve, solve_bb, Domain, Method, Solution, SolveOptions, SquareRoute, TriangleRoute};
+use crate::poly::{parse_polynomial, Polynomial};
+use crate::solve::{
+    solve, solve_bb, solve_reduced, Domain, Method, ReducedSolution, Solution, SolveOptions, SquareRoute, TriangleRoute,
+};
 
 /// Arguments of `rootclip solve`.
 #[derive(Clone, Debug, clap::Args)]
@@ -75,11 +77,14 @@ pub(super) fn run(args: &SolveArgs) -> Result<Answer> {
         Some(s) => opts.with_timeout(super::input::duration("--timeout", s)?),
         None => opts,
     };
-    let sol = match (&args.f, &args.g, &args.f_bb, &args.g_bb) {
+    // The system as exact polynomials with its domain, for the common-factor
+    // route; and the solve.
+    let (exact, sol) = match (&args.f, &args.g, &args.f_bb, &args.g_bb) {
         (Some(f), Some(g), None, None) => {
             let f = parse_polynomial(f).map_err(|e| prefix("--f", e))?;
             let g = parse_polynomial(g).map_err(|e| prefix("--g", e))?;
-            solve(&f, &g, args.domain, &opts)?
+            let sol = solve(&f, &g, args.domain, &opts);
+            ((f, g, args.domain), sol)
         }
         (None, None, Some(fp), Some(gp)) => {
             if fp == "-" && gp == "-" {
@@ -90,8 +95,16 @@ pub(super) fn run(args: &SolveArgs) -> Result<Answer> {
             let f = parse_bb(&read_input(fp)?, "--f-bb")?;
             let g = parse_bb(&read_input(gp)?, "--g-bb")?;
             match (f, g) {
-                (Bb::Triangle(f), Bb::Triangle(g)) => solve_bb(&f, &g, &opts)?,
-                (Bb::Square(f), Bb::Square(g)) => solve_bb(&f, &g, &opts)?,
+                (Bb::Triangle(f), Bb::Triangle(g)) => {
+                    let sol = solve_bb(&f, &g, &opts);
+                    let p = (Polynomial::from_triangle(&f), Polynomial::from_triangle(&g));
+                    ((p.0, p.1, Domain::Triangle), sol)
+                }
+                (Bb::Square(f), Bb::Square(g)) => {
+                    let sol = solve_bb(&f, &g, &opts);
+                    let p = (Polynomial::from_square(&f), Polynomial::from_square(&g));
+                    ((p.0, p.1, Domain::Square), sol)
+                }
                 _ => {
                     return Err(Error::InvalidOption(
                         "--f-bb and --g-bb must have the same domain".into(),
@@ -101,11 +114,33 @@ pub(super) fn run(args: &SolveArgs) -> Result<Answer> {
         }
         _ => return Err(Error::InvalidOption("give --f and --g, or --f-bb and --g-bb".into())),
     };
+    // A common factor is a curve of roots: listed as the factor, with the
+    // isolated roots of the reduced system.
+    let reduced = match sol {
+        Ok(sol) => ReducedSolution {
+            common_factor: "1".into(),
+            solution: sol,
+        },
+        Err(Error::CommonFactor { .. }) => solve_reduced(&exact.0, &exact.1, exact.2, &opts)?,
+        Err(e) => return Err(e),
+    };
     Ok(if args.json {
-        Answer::new(move |out| write_document(out, &sol))
+        if reduced.common_factor == "1" {
+            Answer::new(move |out| write_document(out, &reduced.solution))
+        } else {
+            Answer::new(move |out| write_document(out, &reduced))
+        }
     } else {
-        let secs = sol.stats.seconds;
-        Answer::text(solution_text(&sol, secs))
+        let secs = reduced.solution.stats.seconds;
+        let head = if reduced.common_factor == "1" {
+            String::new()
+        } else {
+            format!(
+                "common factor {}: its zeros are a curve of roots (not listed); the other roots:\n",
+                reduced.common_factor
+            )
+        };
+        Answer::text(head + &solution_text(&reduced.solution, secs))
     })
 }
 

@@ -117,7 +117,7 @@ fn run(f: &[Interval], g: &[Interval], solve: impl FnOnce() -> Result<Solution>)
     match solve() {
         Ok(s) => Ok(Solved::Solution(Box::new(s))),
         // Unreachable after the screen above (kept as the solver's own word).
-        Err(Error::Degenerate(_)) => Ok(Solved::ZeroEquation),
+        Err(Error::Degenerate(_) | Error::ZeroEquation(_)) => Ok(Solved::ZeroEquation),
         Err(e) => Err(e),
     }
 }

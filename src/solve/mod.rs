@@ -23,6 +23,7 @@
 //! boundary of an exact system are settled in exact arithmetic. The whole
 //! argument, step by step, is in `docs/rigor.md` of the repository.
 
+mod common_factor;
 pub(crate) mod degenerate;
 pub(crate) mod driver;
 mod envelope;
@@ -320,7 +321,7 @@ fn solve_bb_timed<P: BbPolynomial>(f: &P, g: &P, opts: &SolveOptions) -> Result<
 fn not_zero(f_zero: bool, g_zero: bool) -> Result<()> {
     if f_zero || g_zero {
         let which = if f_zero { "f" } else { "g" };
-        return Err(Error::Degenerate(format!(
+        return Err(Error::ZeroEquation(format!(
             "equation {which} is identically zero: every point of the other curve is a root"
         )));
     }
@@ -329,11 +330,85 @@ fn not_zero(f_zero: bool, g_zero: bool) -> Result<()> {
 
 fn no_common_factor(f: &Polynomial, g: &Polynomial) -> Result<()> {
     if degenerate::has_common_factor(f, g) {
-        return Err(Error::Degenerate(
-            "f and g share a common factor: the system has a curve of roots".into(),
-        ));
+        return Err(Error::CommonFactor {
+            factor: common_factor::gcd(f, g).to_string(),
+        });
     }
     Ok(())
+}
+
+/// The solution of a system with a common factor ([`solve_reduced`]).
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct ReducedSolution {
+    /// The common factor `h = gcd(f, g)` over ℚ (leading coefficient 1; the
+    /// constant 1 when `f` and `g` are coprime), as an exact expression. Its
+    /// zeros in the domain are roots of the system: a curve, not listed.
+    pub common_factor: String,
+    /// The solve of `f/h = g/h = 0`, with the [`Solution`] contract for that
+    /// system: its roots are roots of `f = g = 0`, and every root of
+    /// `f = g = 0` in the domain is one of them or a zero of `h`. A root here
+    /// where `h ≠ 0` is an isolated, simple root of the original system too
+    /// (its Jacobian there is `h` times the reduced one).
+    #[cfg_attr(feature = "serde", serde(flatten))]
+    pub solution: Solution,
+}
+
+/// Every root of `f = g = 0` over `domain` that is not on a common curve:
+/// with `h = gcd(f, g)` (exact, over ℚ), the system `f/h = g/h = 0` solved
+/// with the [`Solution`] contract, and `h` itself ([`ReducedSolution`]).
+/// Without a common factor this is [`solve`] with `h = 1`.
+///
+/// Errors: as [`solve`], except for a common factor; an identically zero
+/// equation is still [`Error::ZeroEquation`] (then every point of the other
+/// curve is a root, and nothing remains to list).
+///
+/// ```
+/// use rootclip::{parse_polynomial, solve::{solve, solve_reduced, Domain, SolveOptions}, Error};
+/// // (u − v)(u + v − 1) = (u − v)(2u − 1/3) = 0: the line u = v, and (1/6, 5/6).
+/// let f = parse_polynomial("(u - v)*(u + v - 1)")?;
+/// let g = parse_polynomial("(u - v)*(2*u - 1/3)")?;
+/// let opts = SolveOptions::default();
+/// assert!(matches!(solve(&f, &g, Domain::Triangle, &opts), Err(Error::CommonFactor { .. })));
+/// let r = solve_reduced(&f, &g, Domain::Triangle, &opts)?;
+/// assert_eq!(r.common_factor, "-u + v");
+/// assert!(r.solution.complete && r.solution.roots.len() == 1);
+/// assert!(r.solution.roots[0].bx.contains(1.0 / 6.0, 5.0 / 6.0));
+/// # Ok::<(), rootclip::Error>(())
+/// ```
+pub fn solve_reduced(f: &Polynomial, g: &Polynomial, domain: Domain, opts: &SolveOptions) -> Result<ReducedSolution> {
+    not_zero(f.is_zero(), g.is_zero())?;
+    let one = Polynomial::constant(num_traits::One::one());
+    let h = if degenerate::has_common_factor(f, g) {
+        common_factor::gcd(f, g)
+    } else {
+        one
+    };
+    let (rf, rg) = match (common_factor::quotient(f, &h), common_factor::quotient(g, &h)) {
+        (Some(a), Some(b)) => (a, b),
+        _ => {
+            return Err(Error::Degenerate(
+                "the common factor does not divide the equations".into(),
+            ))
+        }
+    };
+    let solution = if rf.as_constant().is_some() || rg.as_constant().is_some() {
+        // A non-zero constant equation: no root off the curve.
+        Solution {
+            complete: true,
+            roots: Vec::new(),
+            clusters: Vec::new(),
+            leftovers: Vec::new(),
+            stats: Stats::default(),
+        }
+    } else {
+        solve(&rf, &rg, domain, opts)?
+    };
+    Ok(ReducedSolution {
+        common_factor: h.to_string(),
+        solution,
+    })
 }
 
 fn check_system(f: &TriBezier<Interval>, g: &TriBezier<Interval>) -> Result<()> {
@@ -342,7 +417,7 @@ fn check_system(f: &TriBezier<Interval>, g: &TriBezier<Interval>) -> Result<()> 
             return Err(Error::NonFinite(format!("a coefficient of {name} is NaN or infinite")));
         }
         if p.is_zero() {
-            return Err(Error::Degenerate(format!("equation {name} is identically zero")));
+            return Err(Error::ZeroEquation(format!("equation {name} is identically zero")));
         }
     }
     Ok(())
