@@ -688,6 +688,46 @@ fn tiny_and_huge_directions_give_the_same_hit() {
     }
 }
 
+/// Any finite input works: a patch (with its ray) scaled by `2^±990` or
+/// `10^±300`, and rational weights at `10^±300`, give the hit of the unscaled
+/// query — the same parameters and `t`, the point scaled — certified.
+#[test]
+fn patches_at_extreme_scales_are_solved_scaled() {
+    let base = [
+        DVec3::new(0.0, 0.0, 0.1),
+        DVec3::new(0.0, 1.0, -0.2),
+        DVec3::new(1.0, 0.0, 0.3),
+        DVec3::new(1.0, 1.0, 0.7),
+    ];
+    let (o, d) = (DVec3::new(0.3, 0.6, 2.0), DVec3::new(0.05, -0.02, -1.0));
+    let solve = |k: f64, w: Option<Vec<f64>>| {
+        let pts = base.iter().map(|p| *p * k).collect();
+        let patch: Patch = TensorPatch::new(1, 1, pts, w).unwrap().into();
+        let ray = Ray::new(o * k, d).unwrap();
+        let out = intersect(&patch, &ray, &RayOptions::default()).unwrap();
+        assert!(out.is_complete(), "scale {k:e}: {out:?}");
+        assert_eq!(out.hits().len(), 1, "scale {k:e}");
+        out.hits()[0].clone()
+    };
+    let h0 = solve(1.0, None);
+    for k in [2f64.powi(990), 2f64.powi(-990), 1e300, 1e-300] {
+        let h = solve(k, None);
+        assert!(h.is_certified(), "scale {k:e}: {h:?}");
+        assert!((h.u - h0.u).abs() < 1e-12 && (h.v - h0.v).abs() < 1e-12, "scale {k:e}");
+        assert!(((h.t / k) - h0.t).abs() < 1e-12 * h0.t, "scale {k:e}: t {}", h.t);
+        assert!((h.point / k - h0.point).length() < 1e-12, "scale {k:e}");
+    }
+    for wk in [1e300, 1e-300] {
+        let h = solve(1.0, Some(vec![wk, 2.0 * wk, 0.5 * wk, wk]));
+        let hw = solve(1.0, Some(vec![1.0, 2.0, 0.5, 1.0]));
+        assert!(h.is_certified(), "weights {wk:e}: {h:?}");
+        assert!(
+            (h.u - hw.u).abs() < 1e-12 && (h.t - hw.t).abs() < 1e-12,
+            "weights {wk:e}"
+        );
+    }
+}
+
 /// Seed 000's Example 1 (fixture file): the simple hit at the paper's
 /// `(u, v)` (9 digits), and the tangential ray of its Example 3 reported as an
 /// undecided region around `(0.5, 0.5)`, never as a certified hit or none.

@@ -215,6 +215,16 @@ fn write_text(out: &mut impl Write, outcomes: &[std::result::Result<RayOutcome, 
     out.write_all(b"\n")
 }
 
+/// `x` with 17 decimals, or in scientific notation when that would print
+/// hundreds of digits or only zeros (`|x| ≥ 10¹⁶` or `|x| < 10⁻⁴`).
+fn fixed_or_exp(x: f64) -> String {
+    if x == 0.0 || (1e-4..1e16).contains(&x.abs()) {
+        format!("{x:.17}")
+    } else {
+        format!("{x:.17e}")
+    }
+}
+
 fn write_outcome(out: &mut impl Write, k: usize, o: &RayOutcome) -> io::Result<()> {
     let hits = o.hits();
     write!(
@@ -229,8 +239,10 @@ fn write_outcome(out: &mut impl Write, k: usize, o: &RayOutcome) -> io::Result<(
     for h in hits {
         write!(
             out,
-            "\n  t = {:.17} u = {:.17} v = {:.17} point [{:e}, {:e}, {:e}] normal [{:.6}, {:.6}, {:.6}]  t box [{:e}, {:e}]",
-            h.t, h.u, h.v, h.point.x, h.point.y, h.point.z, h.normal.x, h.normal.y, h.normal.z, h.bx.t[0], h.bx.t[1]
+            "\n  t = {} u = {:.17} v = {:.17} point [{:e}, {:e}, {:e}] normal [{:.6}, {:.6}, {:.6}]  t box [{:e}, {:e}]",
+            fixed_or_exp(h.t),
+            h.u,
+            h.v, h.point.x, h.point.y, h.point.z, h.normal.x, h.normal.y, h.normal.z, h.bx.t[0], h.bx.t[1]
         )?;
         if let Some(r) = h.undecided_reason() {
             write!(out, "  (undecided: {})", r.describe())?;

@@ -107,6 +107,95 @@ use rayon::prelude::*;
 /// ```
 pub fn intersect(patch: &Patch, ray: &Ray, opts: &RayOptions) -> Result<RayOutcome> {
     opts.validate()?;
+    if let Some((s, w)) = scale_for(patch, ray) {
+        if let Some((scaled, ray)) = scaled_query(patch, ray, s, w) {
+            let out = intersect_unscaled(&scaled, &ray, opts)?;
+            return Ok(unscale(out, s));
+        }
+    }
+    intersect_unscaled(patch, ray, opts)
+}
+
+/// Outside `[2⁻⁴⁰⁰, 2⁴⁰⁰]` the reduction's products (coordinates times the
+/// normals, weights times coordinates) may overflow or lose their digits to
+/// underflow: such a query is solved scaled.
+const SAFE_EXP: i32 = 400;
+
+/// The powers of two `(s, w)` that bring the patch's coordinates with the
+/// ray's origin (`s`), and its weights (`w`), to about 1, where either is
+/// outside the safe range; `None` if both are inside it.
+fn scale_for(patch: &Patch, ray: &Ray) -> Option<(f64, f64)> {
+    let m = patch.magnitude();
+    let outside = |x: f64| x != 0.0 && !(2f64.powi(-SAFE_EXP)..=2f64.powi(SAFE_EXP)).contains(&x);
+    let size = m.coords.max(ray.origin().abs().max_element());
+    let (lo, hi) = (m.weights[0], m.weights[1]);
+    if !outside(size) && !outside(lo) && !outside(hi) {
+        return None;
+    }
+    let to_one = |x: f64| {
+        if x > 0.0 && x.is_finite() {
+            2f64.powi(-(x.log2().floor() as i32).clamp(-1000, 1000))
+        } else {
+            1.0
+        }
+    };
+    Some((to_one(size), to_one(hi)))
+}
+
+/// The patch with its coordinates times `s` and weights times `w`, and the
+/// ray with origin and direction times `s` (the same hits, the same `t`,
+/// the same parameters): `None` unless every product is exact (a
+/// coordinate that would lose bits to underflow keeps the query unscaled).
+fn scaled_query(patch: &Patch, ray: &Ray, s: f64, w: f64) -> Option<(Patch, Ray)> {
+    let exact = |x: f64, k: f64| x * k / k == x && (x * k).is_finite();
+    let mut spec = patch.to_spec();
+    let (points, weights) = match &mut spec {
+        PatchSpec::Triangle { points, weights, .. }
+        | PatchSpec::Tensor { points, weights, .. }
+        | PatchSpec::Bspline { points, weights, .. } => (points, weights),
+    };
+    for p in points.iter_mut() {
+        for c in p.iter_mut() {
+            if !exact(*c, s) {
+                return None;
+            }
+            *c *= s;
+        }
+    }
+    for x in weights.iter_mut().flatten() {
+        if !exact(*x, w) {
+            return None;
+        }
+        *x *= w;
+    }
+    let (o, d) = (ray.origin(), ray.dir());
+    if !(o.to_array().iter().chain(&d.to_array()).all(|&x| exact(x, s))) {
+        return None;
+    }
+    let ray = Ray::new(o * s, d * s).ok()?;
+    Some((Patch::from_spec(&spec).ok()?, ray))
+}
+
+/// The hits of a query solved scaled by `s`, in the original's units: only
+/// the points move (parameters, `t` and normals are the same).
+fn unscale(out: RayOutcome, s: f64) -> RayOutcome {
+    let back = |mut h: RayHits| {
+        for hit in &mut h.hits {
+            hit.point /= s;
+        }
+        h
+    };
+    match out {
+        RayOutcome::Hits(h) => RayOutcome::Hits(back(h)),
+        RayOutcome::Degenerate(Degeneracy::Unresolved(h)) => RayOutcome::Degenerate(Degeneracy::Unresolved(back(h))),
+        RayOutcome::Degenerate(Degeneracy::AlongSurface(h)) => {
+            RayOutcome::Degenerate(Degeneracy::AlongSurface(back(h)))
+        }
+        d => d,
+    }
+}
+
+fn intersect_unscaled(patch: &Patch, ray: &Ray, opts: &RayOptions) -> Result<RayOutcome> {
     // One deadline for every solve this ray starts (routes, retries, pieces).
     let opts = &RayOptions {
         solve: opts.solve.started(),

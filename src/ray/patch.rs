@@ -29,6 +29,7 @@ pub struct TriPatch {
     degree: usize,
     points: Vec<DVec3>,
     weights: Option<Vec<f64>>,
+    magnitude: Magnitude,
     net: Net<TriBezier<f64>>,
     inet: Net<TriBezier<Interval>>,
 }
@@ -41,6 +42,7 @@ pub struct TensorPatch {
     degree: (usize, usize),
     points: Vec<DVec3>,
     weights: Option<Vec<f64>>,
+    magnitude: Magnitude,
     net: Net<TensorBezier<f64>>,
     inet: Net<TensorBezier<Interval>>,
     /// The homogeneous net `(wx, wy, wz, w)` per control point as [`Iv`]
@@ -232,6 +234,7 @@ impl TriPatch {
         };
         Ok(Self {
             degree,
+            magnitude: Magnitude::of(&points, weights.as_deref()),
             points,
             weights,
             net: lift(net)?,
@@ -274,6 +277,10 @@ impl TriPatch {
     pub(crate) fn inet(&self) -> &Net<TriBezier<Interval>> {
         &self.inet
     }
+
+    pub(crate) fn magnitude(&self) -> Magnitude {
+        self.magnitude
+    }
 }
 
 impl TensorPatch {
@@ -311,6 +318,7 @@ impl TensorPatch {
         let ivnet = iv.iter().map(|r| r.map(|x| Iv::new(x.inf(), x.sup()))).collect();
         Ok(Self {
             degree: (m, n),
+            magnitude: Magnitude::of(&points, weights.as_deref()),
             points,
             weights,
             net: lift(net)?,
@@ -355,6 +363,10 @@ impl TensorPatch {
         };
         self.inet = lift(inet)?;
         Ok(())
+    }
+
+    pub(crate) fn magnitude(&self) -> Magnitude {
+        self.magnitude
     }
 
     /// The homogeneous net as [`Iv`] enclosures, row-major.
@@ -452,6 +464,31 @@ impl TensorPatch {
             su[2] * sv[0] - su[0] * sv[2],
             su[0] * sv[1] - su[1] * sv[0],
         ]
+    }
+}
+
+/// The largest magnitude of a patch's control point coordinates and the
+/// range of its weights: whether a query should be scaled by a power of two
+/// first (`ray::intersect`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Magnitude {
+    /// `max |x|` over the control points' coordinates.
+    pub(crate) coords: f64,
+    /// `[min w, max w]` (`[1, 1]` without weights).
+    pub(crate) weights: [f64; 2],
+}
+
+impl Magnitude {
+    pub(crate) fn of(points: &[DVec3], weights: Option<&[f64]>) -> Self {
+        Self {
+            coords: points.iter().map(|p| p.abs().max_element()).fold(0.0, f64::max),
+            weights: weights.map_or([1.0, 1.0], |w| {
+                [
+                    w.iter().copied().fold(f64::INFINITY, f64::min),
+                    w.iter().copied().fold(0.0, f64::max),
+                ]
+            }),
+        }
     }
 }
 

@@ -39,6 +39,15 @@ impl From<BsplineSurface> for Patch {
 }
 
 impl Patch {
+    /// The magnitudes of the control points and weights (cached).
+    pub(crate) fn magnitude(&self) -> super::patch::Magnitude {
+        match self {
+            Patch::Triangle(p) => p.magnitude(),
+            Patch::Tensor(p) => p.magnitude(),
+            Patch::Bspline(s) => s.magnitude,
+        }
+    }
+
     /// `S(u, v)` in `f64`.
     pub fn eval(&self, u: f64, v: f64) -> DVec3 {
         match self {

@@ -4,7 +4,7 @@
 
 use crate::error::{Error, Result};
 use crate::poly::TensorBezier;
-use crate::ray::patch::{TensorPatch, MAX_DEGREE};
+use crate::ray::patch::{Magnitude, TensorPatch, MAX_DEGREE};
 use crate::scalar::point;
 use glam::DVec3;
 use inari::Interval;
@@ -22,6 +22,7 @@ pub struct BsplineSurface {
     pub(super) counts: (usize, usize),
     pub(super) points: Vec<DVec3>,
     pub(super) weights: Option<Vec<f64>>,
+    pub(crate) magnitude: Magnitude,
     /// Distinct knot values in the domain, both ends included.
     pub(super) breaks_u: Vec<f64>,
     pub(super) breaks_v: Vec<f64>,
@@ -203,6 +204,7 @@ impl BsplineSurface {
             knots_u,
             knots_v,
             counts: (nu, nv),
+            magnitude: Magnitude::of(&points, weights.as_deref()),
             points,
             weights,
             breaks_u,
