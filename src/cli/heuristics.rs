@@ -41,34 +41,7 @@ struct Report<'a> {
     options: &'a IterOptions,
     referee_tol: f64,
     runs: &'a [Run],
-    summary: Vec<SummaryJson>,
-}
-
-#[derive(Serialize)]
-struct SummaryJson {
-    method: Iteration,
-    correct: usize,
-    wrong_hit: usize,
-    not_a_hit: usize,
-    undecided: usize,
-    failed: usize,
-    /// `null` when no run is correct.
-    mean_iterations: Option<f64>,
-}
-
-impl From<&Tally> for SummaryJson {
-    fn from(t: &Tally) -> Self {
-        let [correct, wrong_hit, not_a_hit, undecided, failed] = t.counts;
-        Self {
-            method: t.method,
-            correct,
-            wrong_hit,
-            not_a_hit,
-            undecided,
-            failed,
-            mean_iterations: t.mean_iterations.is_finite().then_some(t.mean_iterations),
-        }
-    }
+    summary: &'a [Tally],
 }
 
 pub(super) fn run(args: &HeuristicsArgs) -> Result<String> {
@@ -84,7 +57,7 @@ pub(super) fn run(args: &HeuristicsArgs) -> Result<String> {
             options: &opts,
             referee_tol: REFEREE_TOL,
             runs: &runs,
-            summary: tallies.iter().map(SummaryJson::from).collect(),
+            summary: &tallies,
         }));
     }
     Ok(text(args.example, &opts, &runs, &tallies))

@@ -307,8 +307,17 @@ pub fn run_example(n: u8, opts: &IterOptions) -> Result<Vec<Run>> {
 }
 
 /// Success counts of one method over a set of runs.
+///
+/// JSON (feature `serde`): `{"method", "runs", "correct", "wrong_hit",
+/// "not_a_hit", "undecided", "failed", "mean_iterations"}`, the last
+/// `null` when no run is correct.
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(into = "TallyRepr", from = "TallyRepr")
+)]
 pub struct Tally {
     /// The method.
     pub method: Iteration,
@@ -319,6 +328,49 @@ pub struct Tally {
     pub counts: [usize; 5],
     /// Mean iterations of the correct runs (`NaN` if none).
     pub mean_iterations: f64,
+}
+
+/// [`Tally`] as written and read.
+#[cfg(feature = "serde")]
+#[derive(serde::Serialize, serde::Deserialize)]
+struct TallyRepr {
+    method: Iteration,
+    runs: usize,
+    correct: usize,
+    wrong_hit: usize,
+    not_a_hit: usize,
+    undecided: usize,
+    failed: usize,
+    mean_iterations: Option<f64>,
+}
+
+#[cfg(feature = "serde")]
+impl From<Tally> for TallyRepr {
+    fn from(t: Tally) -> Self {
+        let [correct, wrong_hit, not_a_hit, undecided, failed] = t.counts;
+        TallyRepr {
+            method: t.method,
+            runs: t.runs,
+            correct,
+            wrong_hit,
+            not_a_hit,
+            undecided,
+            failed,
+            mean_iterations: t.mean_iterations.is_finite().then_some(t.mean_iterations),
+        }
+    }
+}
+
+#[cfg(feature = "serde")]
+impl From<TallyRepr> for Tally {
+    fn from(t: TallyRepr) -> Self {
+        Tally {
+            method: t.method,
+            runs: t.runs,
+            counts: [t.correct, t.wrong_hit, t.not_a_hit, t.undecided, t.failed],
+            mean_iterations: t.mean_iterations.unwrap_or(f64::NAN),
+        }
+    }
 }
 
 /// The [`Tally`] of each method of `methods` over `runs`.
