@@ -1,4 +1,4 @@
-//! Seed 000's four iterations (`rootclip::heuristics::iterate`) on a fixed
+//! Park, Ji & Ko's (2013) four iterations (`rootclip::heuristics::iterate`) on a fixed
 //! batch of 256 rays aimed at random points of Example 1's bicubic patch
 //! (`internals::at_scale_rays`: from `P + (U(2, 6), U(−3, 3), U(−3, 3))`,
 //! so `t = 1` is a hit), each from (½, ½) with the default options, one

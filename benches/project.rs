@@ -1,5 +1,5 @@
 //! Certified projection (`rootclip::project::project_batch`) of 2000 points
-//! on seed 001's Table 4 Bézier surface (bidegree (4, 3)), parameters from a
+//! on Pei, Wang & Zhang's (2019) Table 4 Bézier surface (bidegree (4, 3)), parameters from a
 //! fixed stream, `P = S(u, v)` (inversion) and `P = S(u, v) + 0.2 N`
 //! (projection from off the surface): `project/table4-on`,
 //! `project/table4-off`, on rayon's default pool; and one thread,

@@ -1,4 +1,4 @@
-//! Certified ray queries against seed 000's Example 1 bicubic patch
+//! Certified ray queries against Park, Ji & Ko's (2013) Example 1 bicubic patch
 //! (tests/data/seed000_example1.json), per batch of 256 fixed rays
 //! ([`aimed_rays`]: about three quarters hit, some twice), one thread:
 //!

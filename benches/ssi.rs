@@ -1,5 +1,5 @@
 //! Certified surface/surface intersection (`rootclip::ssi::intersect_surfaces`)
-//! with the default options: seed 002's Example 5.1 (two paraboloids of
+//! with the default options: Alsaïdi's Example 5.1 (two paraboloids of
 //! bidegree (2, 2), one closed loop), `ssi/ex5.1`; a bicubic pair with two
 //! branches, `ssi/bicubic`; and a bicubic pair that does not meet,
 //! `ssi/bicubic-apart` (the start-point solves alone). The same pairs, the

@@ -1,4 +1,4 @@
-//! Seed 003's closed forms (Christensen 2008, *Ray intersections*) refereed
+//! Christensen's (2008) closed forms (*Ray intersections*) refereed
 //! by the certified solvers: writes `papers/ray-intersections-2008/README.md`
 //! and its figure. Every number in the write-up is computed here, from a
 //! fixed seed; only the timings change from run to run.

@@ -1,4 +1,4 @@
-//! Seed 001's multipoint inversion experiments (Pei, Wang & Zhang 2019,
+//! Pei, Wang & Zhang's (2019) multipoint inversion experiments (
 //! §5.1, Tables 1–8) rerun, every run refereed by the certified projection.
 //! Writes `papers/multipoint-inversion-2019/inversion.md` and
 //! `inversion_failures.svg`.
@@ -320,7 +320,7 @@ fn main() -> Res<()> {
     );
     let _ = writeln!(
         md,
-        "Paper: seed 001, §5.1 (multipoint inversion on a hyperbolic paraboloid and on the Table 4 Bézier surface). Its numbers are read from [`paper_data_inversion.json`](paper_data_inversion.json); everything else is computed by `examples/multipoint_inversion.rs` at commit `{commit}`, {n} points per experiment, on a shared 2-core machine (other jobs running: times are wall clock of a loaded machine and vary by tens of per cent between runs).\n"
+        "Paper: Pei, Wang & Zhang (2019), §5.1 (multipoint inversion on a hyperbolic paraboloid and on the Table 4 Bézier surface). Its numbers are read from [`paper_data_inversion.json`](paper_data_inversion.json); everything else is computed by `examples/multipoint_inversion.rs` at commit `{commit}`, {n} points per experiment, on a shared 2-core machine (other jobs running: times are wall clock of a loaded machine and vary by tens of per cent between runs).\n"
     );
     let _ = writeln!(md, "Every run of every method is refereed by the certified projection (`rootclip::project::project_batch`): **correct** when `|S(u, v) − P|` is at most the certified minimum's upper end plus `ε₂ = 1e-5`, **wrong foot** when it stopped provably farther (another critical point of the distance), **failed** when it returned no point (the reason in brackets). The methods are in `rootclip::heuristics::inversion`; the choices the paper leaves open are listed in its module docs and below.\n");
     let mut first_failures = String::new();

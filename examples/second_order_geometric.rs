@@ -1,4 +1,4 @@
-//! Seed 000 reproduced and refereed: Park, Ji & Ko (2013), *A second order
+//! Park, Ji & Ko (2013) reproduced and refereed: *A second order
 //! geometric method for ray/parametric surface intersection*, Examples 1–3,
 //! with every end point judged by the certified solver, the basins of
 //! attraction of each method, and the heuristics at scale. Writes
@@ -106,7 +106,7 @@ fn header(r: &mut String, paper: &Value) {
     );
     let _ = writeln!(
         r,
-        "Paper: {} (seed 000, §6). Its numbers are read from [`paper_data.json`](paper_data.json); everything \
+        "Paper: {} (§6). Its numbers are read from [`paper_data.json`](paper_data.json); everything \
          else on this page is computed by `examples/second_order_geometric.rs` on {}, {}.\n",
         paper["paper"].as_str().unwrap_or("?"),
         machine(),

@@ -70,11 +70,11 @@ fn run(name: &str, a: &Patch, b: &Patch, reps: usize) {
 }
 
 fn main() {
-    // Seed 002, Example 5.1 on [−3, 3]²: z = x² + y² and z = 9 − (x² + y²)/5.
+    // Alsaïdi's Example 5.1 on [−3, 3]²: z = x² + y² and z = 9 − (x² + y²)/5.
     let sq = [9.0, -9.0, 9.0];
     let p1 = field(2, -3.0, -3.0, 6.0, 0.0, |i, j| sq[i] + sq[j]);
     let p2 = field(2, -3.0, -3.0, 6.0, 0.0, |i, j| 9.0 - (sq[i] + sq[j]) / 5.0);
-    run("seed 002 Ex. 5.1 (paraboloids)", &p1, &p2, 5);
+    run("Alsaïdi Ex. 5.1 (paraboloids)", &p1, &p2, 5);
     // Bicubic pairs: a wavy field and a rotated, tilted one.
     for seed in 1..=6u64 {
         let za = noise(seed);

@@ -1,4 +1,4 @@
-//! Seed 003's closed forms against their certified referees (the harness of
+//! Christensen's (2008) closed forms against their certified referees (the harness of
 //! `examples/closed_forms.rs`): on random rays they agree with the
 //! referee; on the cases the write-up reports as failures the referee
 //! catches them; and the 2D and 3D referees agree with each other.

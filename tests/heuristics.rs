@@ -1,4 +1,4 @@
-//! Seed 000's iterations (`rootclip::heuristics`): the jets they read, each
+//! Park, Ji & Ko's (2013) iterations (`rootclip::heuristics`): the jets they read, each
 //! iteration on planted hits of every patch type, the paper's special
 //! cases with their failure reasons, and the experiment's verdicts against
 //! `ray::classify` one claim at a time. Reference data (the examples'

@@ -728,7 +728,7 @@ fn patches_at_extreme_scales_are_solved_scaled() {
     }
 }
 
-/// Seed 000's Example 1 (fixture file): the simple hit at the paper's
+/// Park, Ji & Ko's (2013) Example 1 (fixture file): the simple hit at the paper's
 /// `(u, v)` (9 digits), and the tangential ray of its Example 3 reported as an
 /// undecided region around `(0.5, 0.5)`, never as a certified hit or none.
 #[test]

@@ -1,4 +1,4 @@
-//! The certified referees of seed 003's closed forms (harness code, shared by
+//! The certified referees of Christensen's (2008) closed forms (harness code, shared by
 //! the `closed_forms` example, `tests/closed_forms.rs` and the bench).
 //!
 //! * 2D, ray against a segment or a quadratic Bézier curve: the hits are the

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Seed 002, Example 5.2: one biquadratic pair consistent with the paper's tables.
+"""Alsaïdi's Example 5.2: one biquadratic pair consistent with the paper's tables.
 
 The PDF garbled the control points of the two Bezier surfaces of Example 5.2
 (vectors of five numbers for points in 3-D), and its tables do not pin the

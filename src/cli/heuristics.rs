@@ -1,4 +1,4 @@
-//! `rootclip heuristics`: seed 000's experiment (Park, Ji & Ko 2013,
+//! `rootclip heuristics`: Park, Ji & Ko's (2013) experiment (
 //! Examples 1–3), every end point refereed by the certified solver
 //! ([`crate::heuristics::experiment`]).
 //!

@@ -44,7 +44,7 @@ enum Command {
     Ssi(ssi::SsiArgs),
     /// Print the exact Bernstein–Bézier coefficients of a polynomial in u, v.
     Bernstein(bernstein::BernsteinArgs),
-    /// Seed 000's experiment: four ray–patch iterations from 121 starts, each end point refereed.
+    /// Park, Ji & Ko's (2013) experiment: four ray–patch iterations from 121 starts, each end point refereed.
     Heuristics(heuristics::HeuristicsArgs),
 }
 

@@ -53,7 +53,7 @@ pub(super) struct SolveArgs {
     #[arg(long, value_enum, default_value = "rect")]
     square_route: SquareRoute,
     /// How the triangle is solved (exact input): on boxes of the unit
-    /// square (default), or on tri-boxes with --method (seed 004).
+    /// square (default), or on tri-boxes with --method (Liu et al. 2016).
     #[arg(long, value_enum, default_value = "rect")]
     triangle_route: TriangleRoute,
     /// Wall-clock budget in seconds: past it no further box is processed,

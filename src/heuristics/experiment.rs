@@ -1,4 +1,4 @@
-//! Seed 000's experiment, refereed: Examples 1–3 of Park, Ji & Ko (2013,
+//! Park, Ji & Ko's (2013) experiment, refereed: Examples 1–3 (
 //! §6) — a bicubic patch, a ray, 121 starts — with every method's end
 //! point judged by the certified solver ([`crate::ray::classify_with`]),
 //! never by its distance to a printed root.
@@ -83,7 +83,7 @@ pub fn example(n: u8) -> Result<Example> {
         3 => ([full; 4], DVec3::new(5.0, 2.25, 0.0), DVec3::new(-1.0, 0.0, 0.0)),
         _ => {
             return Err(Error::InvalidOption(format!(
-                "seed 000 has Examples 1, 2 and 3, not {n}"
+                "Park, Ji & Ko (2013) has Examples 1, 2 and 3, not {n}"
             )))
         }
     };

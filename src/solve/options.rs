@@ -74,9 +74,9 @@ pub enum SquareRoute {
 )]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum TriangleRoute {
-    /// On tri-boxes with the chosen [`Method`] (seed 004's Algorithm 1; the
+    /// On tri-boxes with the chosen [`Method`] (Liu et al.'s (2016) Algorithm 1; the
     /// tables run this route).
-    #[cfg_attr(feature = "cli", value(help = "tri-boxes clipped with --method (seed 004)"))]
+    #[cfg_attr(feature = "cli", value(help = "tri-boxes clipped with --method (Liu et al. 2016)"))]
     Triangle,
     /// By Bézier clipping on boxes of the unit square, the system converted
     /// exactly to tensor form there, boxes beyond the hypotenuse dropped and

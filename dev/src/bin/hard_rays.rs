@@ -1,4 +1,4 @@
-//! Per-ray cost on issue 20's hard workloads against seed 000's Example 1
+//! Per-ray cost on issue 20's hard workloads against Park, Ji & Ko's (2013) Example 1
 //! bicubic patch (`examples/data/seed000_bicubic.json`), one thread:
 //!
 //! * `aimed` (default): rays aimed at uniform random patch points

@@ -1,4 +1,4 @@
-//! Whole-process timing of certified ray queries against seed 000's Example 1
+//! Whole-process timing of certified ray queries against Park, Ji & Ko's (2013) Example 1
 //! bicubic patch (tests/data/seed000_example1.json), with plain Newton from
 //! the patch centre on the same rays as the baseline.
 //!

@@ -1,4 +1,4 @@
-//! Point inversion and projection heuristics of seed 001 (Pei, Wang &
+//! Point inversion and projection heuristics of Pei, Wang &
 //! Zhang 2019, *An approach to computing multipoint inversion and multiray
 //! surface intersection on parametric surface*), each run refereed by the
 //! certified projection ([`crate::project`]).
@@ -56,7 +56,7 @@ use crate::project::{Projection, ProjectionStatus};
 use crate::ray::Patch;
 use glam::DVec3;
 
-/// The methods compared in seed 001.
+/// The methods Pei, Wang & Zhang (2019) compare.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum Method {
@@ -327,7 +327,7 @@ mod tests {
     use crate::project::{project, ProjectOptions};
     use crate::ray::TensorPatch;
 
-    /// The Table 4 surface of seed 001 (also in the paper's data file).
+    /// The Table 4 surface of Pei, Wang & Zhang (2019) (also in the paper's data file).
     fn table4() -> Patch {
         let pts = [
             [0.0, 0.0, 0.0],
