@@ -3,6 +3,7 @@
 //! back.
 
 use super::json::document;
+use super::values::DomainArg;
 use crate::error::{Error, Result};
 use crate::poly::{parse_polynomial, tri_indices, Polynomial, TensorBezier, TriBezier};
 use crate::solve::Domain;
@@ -19,7 +20,7 @@ pub(super) struct BernsteinArgs {
     f: String,
     /// The domain of the BB form.
     #[arg(long, value_enum, default_value = "triangle")]
-    domain: Domain,
+    domain: DomainArg,
     /// Print JSON instead of text.
     #[arg(long)]
     json: bool,
@@ -81,8 +82,9 @@ fn fraction(q: &BigRational) -> String {
 
 pub(super) fn run(args: &BernsteinArgs) -> Result<String> {
     let poly = parse_polynomial(&args.f)?;
-    poly.check_conversion_cost(args.domain == Domain::Square)?;
-    let doc = to_document(&poly, args.domain);
+    let domain = Domain::from(args.domain);
+    poly.check_conversion_cost(domain == Domain::Square)?;
+    let doc = to_document(&poly, domain);
     if args.json {
         return Ok(document(&doc));
     }
@@ -90,7 +92,7 @@ pub(super) fn run(args: &BernsteinArgs) -> Result<String> {
         Degree::Total(n) => n.to_string(),
         Degree::Bi([m, n]) => format!("[{m},{n}]"),
     };
-    let name = match args.domain {
+    let name = match domain {
         Domain::Square => "square",
         _ => "triangle",
     };

@@ -10,9 +10,10 @@
 //! starts with `u₀` outer.
 
 use super::json::document;
+use super::values::DomainRuleArg;
 use crate::error::Result;
 use crate::heuristics::experiment::{grid_starts, run_example, tally, Run, Tally, Verdict, REFEREE_TOL};
-use crate::heuristics::{DomainRule, IterOptions, Iteration};
+use crate::heuristics::{IterOptions, Iteration};
 use serde::Serialize;
 
 /// Arguments of `rootclip heuristics`.
@@ -29,7 +30,7 @@ pub(super) struct HeuristicsArgs {
     max_iterations: usize,
     /// What a step out of the parameter domain does: cut where it leaves (the paper's rule), clamp onto the domain, or stop.
     #[arg(long, value_enum, default_value = "clip")]
-    domain_rule: DomainRule,
+    domain_rule: DomainRuleArg,
     /// Print JSON instead of text.
     #[arg(long)]
     json: bool,
@@ -48,7 +49,7 @@ pub(super) fn run(args: &HeuristicsArgs) -> Result<String> {
     let opts = IterOptions::default()
         .with_tol(args.tol)
         .with_max_iterations(args.max_iterations)
-        .with_domain_rule(args.domain_rule);
+        .with_domain_rule(args.domain_rule.into());
     let runs = run_example(args.example, &opts)?;
     let tallies = tally(&runs, &Iteration::ALL);
     if args.json {

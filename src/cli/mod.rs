@@ -12,6 +12,7 @@ mod ray;
 mod solve;
 mod ssi;
 mod tables;
+mod values;
 
 use clap::{Parser, Subcommand};
 use output::Answer;

@@ -11,9 +11,9 @@
 use super::input::read_input;
 use super::json::{write_document, Item, ItemError, LazySeq};
 use super::output::Answer;
+use super::values::SquareRouteArg;
 use crate::error::{Error, Result};
 use crate::ray::{intersect, Patch, PatchSpec, Query, Ray, RayOptions, RayOutcome};
-use crate::solve::SquareRoute;
 use glam::DVec3;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -49,7 +49,7 @@ pub(super) struct RayArgs {
     t_max: Option<f64>,
     /// How tensor patches are solved: natively on boxes, or as two triangles.
     #[arg(long, value_enum, default_value = "rect")]
-    route: SquareRoute,
+    route: SquareRouteArg,
     /// Wall-clock budget per ray in seconds (e.g. 0.01): past it the ray ends incomplete with the hits found.
     #[arg(long)]
     timeout: Option<f64>,
@@ -89,7 +89,7 @@ pub(super) fn run(args: &RayArgs) -> Result<Answer> {
     };
     let mut opts = RayOptions::default()
         .with_query(query)
-        .with_route(args.route)
+        .with_route(args.route.into())
         .with_t_range(args.t_min, args.t_max.unwrap_or(f64::INFINITY));
     if let Some(t) = args.timeout {
         opts = opts.with_timeout(super::input::duration("--timeout", t)?);

@@ -5,11 +5,10 @@ use super::bernstein::{parse_bb, Bb};
 use super::input::read_input;
 use super::json::write_document;
 use super::output::Answer;
+use super::values::{DomainArg, MethodArg, SquareRouteArg, TriangleRouteArg};
 use crate::error::{Error, Result};
 use crate::poly::{parse_polynomial, Polynomial};
-use crate::solve::{
-    solve, solve_bb, solve_reduced, Domain, Method, ReducedSolution, Solution, SolveOptions, SquareRoute, TriangleRoute,
-};
+use crate::solve::{solve, solve_bb, solve_reduced, Domain, ReducedSolution, Solution, SolveOptions};
 
 /// Arguments of `rootclip solve`.
 #[derive(Clone, Debug, clap::Args)]
@@ -38,10 +37,10 @@ pub(super) struct SolveArgs {
     g_bb: Option<String>,
     /// The domain (for --f and --g).
     #[arg(long, value_enum, default_value = "triangle", conflicts_with = "f_bb")]
-    domain: Domain,
+    domain: DomainArg,
     /// The clipping method.
     #[arg(long, value_enum, default_value = "hc")]
-    method: Method,
+    method: MethodArg,
     /// Refine regions until their diameter is below this.
     #[arg(long, default_value_t = 1e-12, allow_negative_numbers = true)]
     eps: f64,
@@ -51,11 +50,11 @@ pub(super) struct SolveArgs {
     /// How the square is solved: natively on boxes (default), or as two
     /// triangles with --method (the paper's conversion).
     #[arg(long, value_enum, default_value = "rect")]
-    square_route: SquareRoute,
+    square_route: SquareRouteArg,
     /// How the triangle is solved (exact input): on boxes of the unit
     /// square (default), or on tri-boxes with --method (Liu et al. 2016).
     #[arg(long, value_enum, default_value = "rect")]
-    triangle_route: TriangleRoute,
+    triangle_route: TriangleRouteArg,
     /// Wall-clock budget in seconds: past it no further box is processed,
     /// and the answer lists the unexplored regions as leftovers (complete =
     /// false).
@@ -68,11 +67,11 @@ pub(super) struct SolveArgs {
 
 pub(super) fn run(args: &SolveArgs) -> Result<Answer> {
     let opts = SolveOptions::default()
-        .with_method(args.method)
+        .with_method(args.method.into())
         .with_eps(args.eps)
         .with_max_boxes(args.max_boxes)
-        .with_square_route(args.square_route)
-        .with_triangle_route(args.triangle_route);
+        .with_square_route(args.square_route.into())
+        .with_triangle_route(args.triangle_route.into());
     let opts = match args.timeout {
         Some(s) => opts.with_timeout(super::input::duration("--timeout", s)?),
         None => opts,
@@ -83,8 +82,8 @@ pub(super) fn run(args: &SolveArgs) -> Result<Answer> {
         (Some(f), Some(g), None, None) => {
             let f = parse_polynomial(f).map_err(|e| prefix("--f", e))?;
             let g = parse_polynomial(g).map_err(|e| prefix("--g", e))?;
-            let sol = solve(&f, &g, args.domain, &opts);
-            ((f, g, args.domain), sol)
+            let sol = solve(&f, &g, args.domain.into(), &opts);
+            ((f, g, args.domain.into()), sol)
         }
         (None, None, Some(fp), Some(gp)) => {
             if fp == "-" && gp == "-" {

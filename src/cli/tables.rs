@@ -2,9 +2,10 @@
 //! paper's numbers.
 
 use super::json::document;
+use super::values::SplitArg;
 use crate::error::Result;
 use crate::repro;
-use crate::solve::{Method, SplitRule};
+use crate::solve::Method;
 use serde::Serialize;
 
 /// Arguments of `rootclip tables`.
@@ -16,7 +17,7 @@ pub(super) struct TablesArgs {
     /// The split test: "halving" (split when a clip does not halve the
     /// diameter; default) or "paper" (Algorithm 1 line 7 as printed).
     #[arg(long, value_enum, default_value = "halving")]
-    split: SplitRule,
+    split: SplitArg,
     /// Hybrid methods clip with one role assignment only (f linear, g
     /// quadratic), as the paper's Algorithm 1; by default a clip that does
     /// not halve the tri-box is followed by one with the roles swapped.
@@ -60,7 +61,7 @@ struct TablesJson<'a> {
 
 pub(super) fn run(args: &TablesArgs) -> Result<String> {
     let (rec, diam) = repro::tables(repro::Variant {
-        split: args.split,
+        split: args.split.into(),
         swap_roles: !args.one_role,
     })?;
     if args.json {

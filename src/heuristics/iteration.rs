@@ -185,7 +185,6 @@ impl Iteration {
     derive(serde::Serialize, serde::Deserialize),
     serde(rename_all = "kebab-case")
 )]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum DomainRule {
     /// The rule of §4.4 (its last paragraph), the only one the paper
     /// states: the new point is replaced by the point where the segment

@@ -15,36 +15,22 @@ use std::str::FromStr;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Method {
     /// Triangular Bézier clipping (Roth et al. 2000): convex hulls of both
     /// control nets.
     #[cfg_attr(feature = "serde", serde(rename = "bezier"))]
-    #[cfg_attr(feature = "cli", value(name = "bezier", help = "triangular Bezier clipping"))]
     Bezier,
     /// Linear fat curves for both equations.
     #[cfg_attr(feature = "serde", serde(rename = "linear"))]
-    #[cfg_attr(
-        feature = "cli",
-        value(name = "linear", help = "linear fat curves for both equations")
-    )]
     Linear,
     /// Hybrid clipping without preprocessing: a fat line for `f`, a fat conic
     /// for `g`.
     #[cfg_attr(feature = "serde", serde(rename = "hc-nopre"))]
-    #[cfg_attr(
-        feature = "cli",
-        value(name = "hc-nopre", help = "hybrid clipping without preprocessing")
-    )]
     HcNoPre,
     /// Hybrid clipping: a fat line for the preprocessed `f̂`, a fat conic for
     /// `g` (a second clip with the roles swapped is added unless
     /// `SolveOptions::swap_roles` is off).
     #[cfg_attr(feature = "serde", serde(rename = "hc"))]
-    #[cfg_attr(
-        feature = "cli",
-        value(name = "hc", help = "hybrid clipping with preprocessing (default)")
-    )]
     Hc,
 }
 

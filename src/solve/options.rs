@@ -11,19 +11,10 @@ use crate::error::{Error, Result};
     derive(serde::Serialize, serde::Deserialize),
     serde(rename_all = "snake_case")
 )]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Domain {
     /// `{u, v ≥ 0, u + v ≤ 1}`.
-    #[cfg_attr(
-        feature = "cli",
-        value(help = "the unit triangle {u, v >= 0, u + v <= 1}; degree = total degree")
-    )]
     Triangle,
     /// `[0, 1]²`.
-    #[cfg_attr(
-        feature = "cli",
-        value(help = "the unit square [0, 1]^2; bidegree = (degree in u, degree in v)")
-    )]
     Square,
 }
 
@@ -35,14 +26,9 @@ pub enum Domain {
     derive(serde::Serialize, serde::Deserialize),
     serde(rename_all = "snake_case")
 )]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum SquareRoute {
     /// As two triangles of degree `m + n` with the chosen [`Method`] (the
     /// conversion of Liu et al. 2016).
-    #[cfg_attr(
-        feature = "cli",
-        value(help = "two triangles of degree m + n, clipped with --method")
-    )]
     Triangles,
     /// Natively on boxes by Bézier clipping (Nishita, Sederberg & Kakimoto
     /// 1990; `method`, `probe`, `split` and `max_depth` do not apply),
@@ -51,14 +37,11 @@ pub enum SquareRoute {
     /// (bidegree (2, 2) to (12, 12): 2–26×; degree 20–200 cases that the
     /// triangles of degree `m + n` do not finish; `docs/performance.md`).
     #[default]
-    #[cfg_attr(feature = "cli", value(help = "Bezier clipping on boxes (default)"))]
     Rect,
     /// As [`SquareRoute::Rect`] with fat-line clipping on boxes.
-    #[cfg_attr(feature = "cli", value(help = "fat-line clipping on boxes"))]
     RectFatLine,
     /// As [`SquareRoute::Rect`] with hybrid clipping (a fat line and a fat
     /// conic) on boxes.
-    #[cfg_attr(feature = "cli", value(help = "hybrid clipping (fat line and fat conic) on boxes"))]
     RectHybrid,
 }
 
@@ -72,11 +55,9 @@ pub enum SquareRoute {
     derive(serde::Serialize, serde::Deserialize),
     serde(rename_all = "snake_case")
 )]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum TriangleRoute {
     /// On tri-boxes with the chosen [`Method`] (Liu et al.'s (2016) Algorithm 1; the
     /// tables run this route).
-    #[cfg_attr(feature = "cli", value(help = "tri-boxes clipped with --method (Liu et al. 2016)"))]
     Triangle,
     /// By Bézier clipping on boxes of the unit square, the system converted
     /// exactly to tensor form there, boxes beyond the hypotenuse dropped and
@@ -86,10 +67,6 @@ pub enum TriangleRoute {
     /// dense systems of degree 2–20, 15–20× on the degree 20–25 line
     /// arrangements; `docs/performance.md`).
     #[default]
-    #[cfg_attr(
-        feature = "cli",
-        value(help = "Bezier clipping on boxes of the unit square (default)")
-    )]
     Rect,
 }
 

@@ -52,24 +52,15 @@ pub struct Limits {
     derive(serde::Serialize, serde::Deserialize),
     serde(rename_all = "snake_case")
 )]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum SplitRule {
     /// Split when the clip did not halve the diameter (default; the reading
     /// of §2.3.5's prose, "larger than half of the size of D").
     #[default]
-    #[cfg_attr(
-        feature = "cli",
-        value(help = "split when a clip does not halve the diameter (default)")
-    )]
     Halving,
     /// Split when `u_min + v_min + w_min ≤ 0.5·diam(D)`, Algorithm 1 line 7 as
     /// printed. It mixes a barycentric sum with a length, so on small
     /// tri-boxes it almost never splits; it reproduces the paper's Bézier and
     /// linear counts closely (see papers/hybrid-clipping-2016).
-    #[cfg_attr(
-        feature = "cli",
-        value(name = "paper", help = "split when u_min + v_min + w_min <= 0.5 diam(D), as printed")
-    )]
     PaperLiteral,
 }
 
